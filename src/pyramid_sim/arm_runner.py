@@ -1,0 +1,82 @@
+"""Runs one arm through its list of primitive steps, one control tick at a time.
+
+Pure apart from the numbers it is handed: it turns steps into a tool-centre target pose and a
+finger-gap command per tick, and says when the current step and the whole list are done.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .config import SimConfig
+from .poses import Pose
+from .primitives import Step, StepKind
+from .trajectory import Segment, plan_segment
+
+
+@dataclass
+class ArmRunner:
+    arm: str
+    config: SimConfig
+    pose: Pose  # commanded tool-centre pose
+    gap: float  # commanded finger gap (m)
+    steps: list[Step] = field(default_factory=list)
+    _segment: Segment | None = None
+    _t: float = 0.0
+    _gap_from: float = 0.0
+    _just_finished: Step | None = None
+
+    @property
+    def busy(self) -> bool:
+        return bool(self.steps)
+
+    @property
+    def current(self) -> Step | None:
+        return self.steps[0] if self.steps else None
+
+    @property
+    def open_gap(self) -> float:
+        return 2 * self.config.gripper.stroke
+
+    def load(self, steps: list[Step]) -> None:
+        self.steps = list(steps)
+        self._start_step()
+
+    def _start_step(self) -> None:
+        self._t = 0.0
+        self._segment = None
+        self._gap_from = self.gap
+        step = self.current
+        if step is not None and step.kind is StepKind.MOVE:
+            assert step.pose is not None
+            motion = self.config.motion
+            self._segment = plan_segment(self.pose, step.pose, step.speed, motion.turn_rate)
+
+    def tick(self, dt: float, ik_error: float) -> Step | None:
+        """Advance by dt; returns the step that finished on this tick, if any."""
+        step = self.current
+        if step is None:
+            return None
+        self._t += dt
+        grip = self.config.gripper
+        if step.kind is StepKind.MOVE:
+            assert self._segment is not None
+            self.pose = self._segment.at(self._t)
+            finished = (
+                self._t >= self._segment.duration
+                and ik_error <= self.config.motion.position_tolerance
+            )
+        elif step.kind is StepKind.GRIP:
+            ramp = min(1.0, self._t / grip.close_time)
+            self.gap = self._gap_from + (0.0 - self._gap_from) * ramp
+            finished = self._t >= grip.close_time + grip.settle_time
+        else:  # RELEASE: hold still, then open
+            wait = self.config.motion.settle_before_release
+            ramp = min(1.0, max(0.0, self._t - wait) / grip.close_time)
+            self.gap = self._gap_from + (self.open_gap - self._gap_from) * ramp
+            finished = self._t >= wait + grip.close_time + grip.settle_time
+        if not finished:
+            return None
+        self.steps.pop(0)
+        self._start_step()
+        return step

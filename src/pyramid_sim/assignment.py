@@ -1,0 +1,36 @@
+"""Which arm places which brick, and in what order: the seed's `arrange_coordinates`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+from .structures import BrickTarget
+
+
+@dataclass(frozen=True)
+class Assignment:
+    """One brick of the build order: its index in that order, its arm and its target."""
+
+    index: int
+    arm: str
+    target: BrickTarget
+
+
+def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
+    """Lowest layer first; the left arm takes the remaining brick of that layer with the largest
+    y, then the right arm the one with the smallest y, alternating; with an odd count the left
+    arm places the last brick. (The seed compares z values; layers are compared here, which is
+    the same for its structures and is exact.)"""
+    remaining = list(targets)
+    order: list[Assignment] = []
+    while remaining:
+        for arm, pick in (("left", max), ("right", min)):
+            if not remaining:
+                break
+            lowest = min(t.layer for t in remaining)
+            layer = [t for t in remaining if t.layer == lowest]
+            chosen = pick(layer, key=lambda t: t.pose.y)
+            remaining.remove(chosen)
+            order.append(Assignment(len(order), arm, chosen))
+    return tuple(order)

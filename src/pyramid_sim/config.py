@@ -1,0 +1,148 @@
+"""Frozen configuration values, each checked once where it is made.
+
+Every entry point builds these, so a bad value is caught in one place and reported as one line
+naming the field and its accepted range (ConfigError).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .errors import ConfigError
+
+Vec3 = tuple[float, float, float]
+
+
+def check_range(
+    name: str, value: float, low: float, high: float, *, low_open: bool = False
+) -> None:
+    """Raise ConfigError unless low <= value <= high (low < value when low_open)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError(f"{name}: {value!r} is not a number; accepted {_span(low, high, low_open)}")
+    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
+    if not ok:
+        raise ConfigError(f"{name}: {value} is out of range; accepted {_span(low, high, low_open)}")
+
+
+def _span(low: float, high: float, low_open: bool) -> str:
+    return f"{'(' if low_open else '['}{low:g}, {high:g}]"
+
+
+@dataclass(frozen=True)
+class BrickConfig:
+    """The seed's brick: 0.192 x 0.086 x 0.062 m, long axis along its x, 0.5 kg."""
+
+    length: float = 0.192
+    width: float = 0.086
+    height: float = 0.062
+    mass: float = 0.5
+    friction: float = 1.0  # sliding friction of brick-brick and brick-table contacts
+
+    def __post_init__(self) -> None:
+        check_range("brick length", self.length, 0.05, 0.5, low_open=True)
+        check_range("brick width", self.width, 0.02, 0.095)
+        check_range("brick height", self.height, 0.02, 0.2)
+        check_range("brick mass", self.mass, 0.0, 5.0, low_open=True)
+        check_range("brick friction", self.friction, 0.0, 5.0, low_open=True)
+
+    @property
+    def size(self) -> Vec3:
+        return (self.length, self.width, self.height)
+
+
+@dataclass(frozen=True)
+class GripperConfig:
+    """Finger stroke, squeeze force and pad friction.
+
+    The stock Panda fingers travel 0-40 mm each (80 mm gap); the brick is 86 mm wide, so the
+    stroke is widened to 50 mm a finger (100 mm gap), the seed's own "width of the gripper" fix.
+    """
+
+    force: float = 20.0  # N, squeeze of each pad on the brick
+    pad_friction: float = 1.0
+    stroke: float = 0.05  # m per finger
+    close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
+    settle_time: float = 0.15  # s after the ramp, for the force to build
+
+    def __post_init__(self) -> None:
+        check_range("grip force", self.force, 0.0, 140.0, low_open=True)
+        check_range("pad friction", self.pad_friction, 0.0, 5.0, low_open=True)
+        check_range("finger stroke", self.stroke, 0.045, 0.06)
+        check_range("gripper close time", self.close_time, 0.02, 2.0)
+        check_range("gripper settle time", self.settle_time, 0.0, 2.0)
+
+
+@dataclass(frozen=True)
+class LayoutConfig:
+    """Where things stand: the robots' bases, the table and the spawn spot.
+
+    The world frame is the seed's robot frame: x forward, y to the left, z up, with the bases at
+    z = 0 and the table top at 0.079 m so the seed's brick centre height 0.11 m rests on it.
+    """
+
+    left_base: Vec3 = (0.15, 0.25, 0.0)
+    right_base: Vec3 = (0.15, -0.25, 0.0)
+    table_top_z: float = 0.079
+    spawn_xy: tuple[float, float] = (0.49, 0.01)
+    spawn_yaw: float = math.pi / 2  # the seed turns the spawned brick 90 degrees
+
+    def __post_init__(self) -> None:
+        check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
+        check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)
+        check_range("spawn y", self.spawn_xy[1], -0.4, 0.4)
+
+
+@dataclass(frozen=True)
+class MotionConfig:
+    """Primitive distances and speeds (the seed's hover distance 0.1 m, halved to pick)."""
+
+    hover: float = 0.10  # m above a place target; picks hover at half of it, as the seed
+    release_clearance: float = 0.004  # m above the resting pose where a brick is let go
+    speed: float = 0.6  # m/s, peak Cartesian speed of free moves
+    slow_speed: float = 0.25  # m/s, servo moves near bricks
+    turn_rate: float = 1.5  # rad/s, peak hand rotation rate
+    control_dt: float = 0.01  # s, IK rate (100 Hz)
+    settle_before_release: float = 0.15  # s held still at the release pose
+    position_tolerance: float = 0.002  # m, IK target reached
+    clear_height: float = 0.40  # m, z of the outer collision-clear pose
+    clear_y: float = 0.62  # m, |y| of the outer collision-clear pose
+    clear_x: float = 0.30  # m, x of the outer collision-clear pose
+
+    def __post_init__(self) -> None:
+        check_range("hover distance", self.hover, 0.02, 0.3)
+        check_range("release clearance", self.release_clearance, 0.0, 0.05)
+        check_range("speed", self.speed, 0.0, 1.5, low_open=True)
+        check_range("slow speed", self.slow_speed, 0.0, 1.0, low_open=True)
+        check_range("turn rate", self.turn_rate, 0.0, 6.0, low_open=True)
+        check_range("control dt", self.control_dt, 0.002, 0.05)
+        check_range("settle before release", self.settle_before_release, 0.0, 2.0)
+
+
+@dataclass(frozen=True)
+class SimConfig:
+    """Everything a build needs beyond the structure itself."""
+
+    brick: BrickConfig = field(default_factory=BrickConfig)
+    gripper: GripperConfig = field(default_factory=GripperConfig)
+    layout: LayoutConfig = field(default_factory=LayoutConfig)
+    motion: MotionConfig = field(default_factory=MotionConfig)
+    timestep: float = 0.002
+    settle_time: float = 1.0  # s of physics after both arms retract, before measuring
+    max_sim_time: float = 300.0  # s, a build still running then has failed
+
+    def __post_init__(self) -> None:
+        check_range("timestep", self.timestep, 0.0005, 0.004)
+        check_range("settle time", self.settle_time, 0.0, 10.0)
+        check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
+        steps = self.motion.control_dt / self.timestep
+        if abs(steps - round(steps)) > 1e-9:
+            raise ConfigError(
+                f"control dt: {self.motion.control_dt} is not a whole number of timesteps "
+                f"({self.timestep})"
+            )
+
+    @property
+    def substeps(self) -> int:
+        """Physics steps per control step."""
+        return int(round(self.motion.control_dt / self.timestep))

@@ -1,0 +1,37 @@
+"""Names used in the MuJoCo scene, spelled once."""
+
+from typing import Final
+
+ARMS: Final = ("left", "right")
+
+ARM_JOINTS: Final = tuple(f"panda_joint{i}" for i in range(1, 8))
+FINGER_JOINTS: Final = ("panda_finger_joint1", "panda_finger_joint2")
+TCP_SITE: Final = "tcp"
+HAND_BODY: Final = "panda_hand"
+FINGER_BODIES: Final = ("panda_leftfinger", "panda_rightfinger")
+PAD_GEOMS: Final = ("left_pad", "right_pad")
+GRIPPER_ACTUATOR: Final = "gripper"
+GRIPPER_TENDON: Final = "finger_gap"
+
+# The real Panda's limits (Franka datasheet, also in example-robot-data's URDF).
+JOINT_VELOCITY_LIMITS: Final = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)
+JOINT_TORQUE_LIMITS: Final = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
+JOINT_ACCELERATION_LIMITS: Final = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
+# Position gains from shoulder to wrist (FINDINGS.md).
+JOINT_KP: Final = (4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0)
+
+# A comfortable arm posture with the hand pointing down in front of the robot.
+HOME_QPOS: Final = (0.0, -0.3, 0.0, -2.2, 0.0, 1.9, 0.785)
+
+BRICK_PREFIX: Final = "brick"
+TABLE_GEOM: Final = "table_top"
+
+
+def prefixed(arm: str, name: str) -> str:
+    """Scene name of a robot element: robots are attached with the prefix `arm/`."""
+    return f"{arm}/{name}"
+
+
+def brick_name(index: int) -> str:
+    """Prefix of the brick with magazine slot `index`."""
+    return f"{BRICK_PREFIX}{index:02d}/"

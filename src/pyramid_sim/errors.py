@@ -1,0 +1,17 @@
+"""One exception root, so callers can catch everything pyramid_sim raises on purpose."""
+
+
+class PyramidSimError(Exception):
+    """Root of every error pyramid_sim raises on purpose."""
+
+
+class ConfigError(PyramidSimError, ValueError):
+    """A setting or input is outside its accepted range; the message names both."""
+
+
+class UnreachableError(PyramidSimError):
+    """A target pose cannot be reached by the arm assigned to it."""
+
+
+class SimulationError(PyramidSimError):
+    """The physics went wrong (NaN, warnings) and the run was stopped."""

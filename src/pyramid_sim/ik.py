@@ -1,0 +1,135 @@
+"""Differential IK for both arms with mink, on an arms-only copy of the scene.
+
+Solving on a model without the free bricks is about four times faster (FINDINGS.md); joint names
+are shared with the full scene, so the solution maps over by name.
+"""
+
+from __future__ import annotations
+
+import mink
+import mujoco
+import numpy as np
+
+from . import constants as c
+from .config import SimConfig
+from .errors import UnreachableError
+from .poses import Pose, tcp_rotation, yaw_of
+from .scene import build_spec
+
+SOLVER = "daqp"
+VELOCITY_MARGIN = 0.9
+
+
+def arm_qpos_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
+    """qpos addresses of one arm's seven joints in `model`."""
+    return np.array([model.joint(c.prefixed(arm, j)).qposadr[0] for j in c.ARM_JOINTS])
+
+
+def arm_dof_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
+    """dof addresses of one arm's seven joints in `model`."""
+    return np.array([model.joint(c.prefixed(arm, j)).dofadr[0] for j in c.ARM_JOINTS])
+
+
+class DualArmIK:
+    """One mink problem for both arms: a TCP frame task per arm, a light posture task,
+    joint position and velocity limits."""
+
+    def __init__(
+        self, config: SimConfig, posture_cost: float = 1e-2, damping: float = 1e-2
+    ) -> None:
+        self.damping = damping
+        self.model = build_spec(config, 0, with_bricks=False).compile()
+        self.configuration = mink.Configuration(self.model)
+        self.dt = config.motion.control_dt
+        self.qadr = {arm: arm_qpos_addresses(self.model, arm) for arm in c.ARMS}
+        self.tasks = {
+            arm: mink.FrameTask(
+                frame_name=c.prefixed(arm, c.TCP_SITE),
+                frame_type="site",
+                position_cost=1.0,
+                orientation_cost=1.0,
+                lm_damping=1e-3,
+            )
+            for arm in c.ARMS
+        }
+        self.posture = mink.PostureTask(self.model, cost=posture_cost)
+        # A margin under the real limits: the servos overshoot the IK's velocity a little.
+        velocities = {
+            c.prefixed(arm, j): VELOCITY_MARGIN * v
+            for arm in c.ARMS
+            for j, v in zip(c.ARM_JOINTS, c.JOINT_VELOCITY_LIMITS)
+        }
+        self.limits = [
+            mink.ConfigurationLimit(self.model),
+            mink.VelocityLimit(self.model, velocities),
+        ]
+        dof = {arm: arm_dof_addresses(self.model, arm) for arm in c.ARMS}
+        self.max_dv = np.full(self.model.nv, np.inf)
+        for arm in c.ARMS:
+            self.max_dv[dof[arm]] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
+        self.velocity = np.zeros(self.model.nv)
+        self.reset(np.array(c.HOME_QPOS), np.array(c.HOME_QPOS))
+
+    def reset(self, left_q: np.ndarray, right_q: np.ndarray) -> None:
+        """Put both arms at the given joint positions; posture pulls back towards them."""
+        q = self.model.qpos0.copy()
+        q[self.qadr["left"]] = left_q
+        q[self.qadr["right"]] = right_q
+        self.configuration.update(q)
+        self.posture.set_target(q)
+        self.velocity = np.zeros(self.model.nv)
+        for arm in c.ARMS:
+            self.tasks[arm].set_target(self.configuration.get_transform_frame_to_world(
+                c.prefixed(arm, c.TCP_SITE), "site"))
+
+    def arm_q(self, arm: str) -> np.ndarray:
+        return self.configuration.q[self.qadr[arm]].copy()
+
+    def tcp_pose(self, arm: str) -> Pose:
+        """Where the IK's model has the arm's tool centre now."""
+        data = self.configuration.data
+        site = data.site(c.prefixed(arm, c.TCP_SITE))
+        x, y, z = site.xpos
+        return Pose(float(x), float(y), float(z), yaw_of(site.xmat.reshape(3, 3)))
+
+    def set_target(self, arm: str, pose: Pose) -> None:
+        target = mink.SE3.from_rotation_and_translation(
+            mink.SO3.from_matrix(tcp_rotation(pose.yaw)), pose.position
+        )
+        self.tasks[arm].set_target(target)
+
+    def step(self) -> None:
+        """One control step: solve for joint velocities and integrate them over dt.
+
+        The change of velocity is clipped to the Panda's acceleration limits: the QP has none,
+        and a sudden reversal (near the shoulder singularity) would shake the brick loose.
+        """
+        velocity = mink.solve_ik(
+            self.configuration,
+            [*self.tasks.values(), self.posture],
+            self.dt,
+            SOLVER,
+            damping=self.damping,
+            limits=self.limits,
+        )
+        velocity = np.clip(velocity, self.velocity - self.max_dv, self.velocity + self.max_dv)
+        self.velocity = velocity
+        self.configuration.integrate_inplace(velocity, self.dt)
+
+    def error(self, arm: str) -> tuple[float, float]:
+        """Position (m) and orientation (rad) error of the arm's frame task."""
+        err = self.tasks[arm].compute_error(self.configuration)
+        return float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:]))
+
+    def solve(self, arm: str, pose: Pose, max_steps: int = 400, tol: float = 1e-3) -> np.ndarray:
+        """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""
+        self.set_target(arm, pose)
+        for _ in range(max_steps):
+            self.step()
+            pos_err, rot_err = self.error(arm)
+            if pos_err < tol and rot_err < 0.01:
+                return self.arm_q(arm)
+        raise UnreachableError(
+            f"{arm} arm cannot reach ({pose.x:.3f}, {pose.y:.3f}, {pose.z:.3f}) yaw "
+            f"{pose.yaw:.2f}: {pos_err * 1000:.1f} mm short"
+        )

@@ -1,0 +1,68 @@
+"""Top-down gripper poses: a position and a yaw (the hand always points straight down).
+
+Pure numpy, no MuJoCo: geometry, primitives and the scheduler speak in these.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Pose:
+    """A brick or tool-centre pose: position (m, world frame) and yaw about z (rad)."""
+
+    x: float
+    y: float
+    z: float
+    yaw: float = 0.0
+
+    @property
+    def position(self) -> np.ndarray:
+        return np.array([self.x, self.y, self.z])
+
+    def moved(self, dx: float = 0.0, dy: float = 0.0, dz: float = 0.0) -> "Pose":
+        """The same pose shifted by (dx, dy, dz)."""
+        return Pose(self.x + dx, self.y + dy, self.z + dz, self.yaw)
+
+    def with_yaw(self, yaw: float) -> "Pose":
+        return Pose(self.x, self.y, self.z, yaw)
+
+
+def wrap_angle(angle: float) -> float:
+    """Angle in [-pi, pi)."""
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def symmetric_yaw_error(a: float, b: float) -> float:
+    """Smallest |a - b| for a brick, which looks the same turned half a turn (rad, [0, pi/2])."""
+    d = abs(wrap_angle(a - b)) % math.pi
+    return min(d, math.pi - d)
+
+
+def grasp_yaw(brick_yaw: float, reference: float) -> float:
+    """Hand yaw that grips the brick across its width, of the two the nearer `reference`.
+
+    The fingers close along the hand's y axis, so the hand yaw equals the brick yaw modulo pi.
+    """
+    candidates = (brick_yaw, brick_yaw + math.pi, brick_yaw - math.pi)
+    return min(candidates, key=lambda y: abs(wrap_angle(y - reference)))
+
+
+def tcp_rotation(yaw: float) -> np.ndarray:
+    """Rotation matrix of a downward-pointing tool frame with the given yaw: Rz(yaw) Rx(pi)."""
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return np.array([[cy, sy, 0.0], [sy, -cy, 0.0], [0.0, 0.0, -1.0]])
+
+
+def yaw_of(rotation: np.ndarray) -> float:
+    """Yaw of a rotation matrix's x axis projected on the ground plane."""
+    return math.atan2(rotation[1, 0], rotation[0, 0])
+
+
+def tilt_of(rotation: np.ndarray) -> float:
+    """Angle (rad) between a body's z axis and the world z axis."""
+    return math.acos(max(-1.0, min(1.0, abs(rotation[2, 2]))))

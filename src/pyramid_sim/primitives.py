@@ -1,0 +1,73 @@
+"""The seed's motion primitives as lists of steps: pure, no MuJoCo.
+
+pick  = hover, approach, servo, grip, retract (approach and retract at half the hover distance,
+        as the seed halves it for picking);
+place = hover, servo, release, retract;
+clear = move to the arm's outer collision-clear pose.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from .config import MotionConfig
+from .poses import Pose, grasp_yaw
+
+
+class StepKind(str, Enum):
+    MOVE = "move"
+    GRIP = "grip"
+    RELEASE = "release"
+
+
+@dataclass(frozen=True)
+class Step:
+    """One primitive: a move of the tool centre to `pose`, or a gripper action."""
+
+    name: str
+    kind: StepKind
+    pose: Pose | None = None
+    speed: float = 0.0
+    enters_zone: bool = False  # the first step into the shared zone waits for the barrier
+
+
+def pick_steps(brick: Pose, motion: MotionConfig, grasp_height: float, yaw_ref: float) -> list[Step]:
+    """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre."""
+    grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
+    half = motion.hover / 2
+    return [
+        Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed, enters_zone=True),
+        Step("approach", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
+        Step("servo", StepKind.MOVE, grasp, motion.slow_speed),
+        Step("grip", StepKind.GRIP),
+        Step("retract", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
+    ]
+
+
+def place_steps(
+    target: Pose, motion: MotionConfig, grasp_height: float, yaw_ref: float
+) -> list[Step]:
+    """Steps that set a held brick down at `target` (its resting pose) and let go of it."""
+    hold = target.moved(dz=grasp_height).with_yaw(grasp_yaw(target.yaw, yaw_ref))
+    release = hold.moved(dz=motion.release_clearance)
+    return [
+        Step("hover", StepKind.MOVE, hold.moved(dz=motion.hover), motion.speed, enters_zone=True),
+        Step("servo", StepKind.MOVE, release, motion.slow_speed),
+        Step("release", StepKind.RELEASE),
+        Step("retract", StepKind.MOVE, hold.moved(dz=motion.hover), motion.slow_speed),
+    ]
+
+
+def clear_pose(arm: str, motion: MotionConfig) -> Pose:
+    """The arm's outer collision-clear pose, out to its own side."""
+    side = 1.0 if arm == "left" else -1.0
+    return Pose(motion.clear_x, side * motion.clear_y, motion.clear_height, 0.0)
+
+
+def clear_steps(arm: str, motion: MotionConfig) -> list[Step]:
+    return [Step("clear", StepKind.MOVE, clear_pose(arm, motion), motion.speed)]
+
+
+# Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
+YAW_REFERENCE = 0.0

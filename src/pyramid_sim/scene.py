@@ -1,0 +1,163 @@
+"""Compose the MuJoCo scene: assets/ world, two Pandas from example-robot-data, a brick magazine.
+
+The Panda comes from example-robot-data's URDF (collision meshes serve as visuals: the visual
+meshes are .dae, which MuJoCo cannot read). What is changed from the URDF, and why:
+- finger stroke widened from 0-40 mm to `GripperConfig.stroke` per finger: the brick is 86 mm
+  wide, the stock gripper opens 80 mm;
+- one force-limited position actuator on a tendon coupling both fingers (command = finger gap),
+  the fingers kept symmetric by a joint equality;
+- position actuators on the arm joints with the real arm's torque limits, armature 0.1,
+  damping 1 and gravity compensation (the URDF brings no actuators and almost no damping);
+- the rubber finger tips ("pads") get their own friction, stiff contact and a higher priority so a
+  held brick does not creep, while the brick's own friction stays the one of brick-brick and
+  brick-table contacts.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from . import constants as c
+from .config import SimConfig
+
+ASSETS = Path(__file__).resolve().parents[2] / "assets"
+PAD_SOLREF = (0.004, 1.0)
+PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
+PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the robots
+
+
+@lru_cache(maxsize=1)
+def panda_urdf_dir() -> Path:
+    """Folder of example-robot-data's Panda description (its Python module needs pinocchio)."""
+    dist = importlib.metadata.distribution("example-robot-data")
+    root = Path(str(dist.locate_file("cmeel.prefix/share/example-robot-data/robots")))
+    return root / "panda_description"
+
+
+def panda_spec(config: SimConfig) -> mujoco.MjSpec:
+    """One Panda with the changes listed in this module's docstring."""
+    root = panda_urdf_dir()
+    text = (root / "urdf" / "panda.urdf").read_text()
+    meshes = root / "meshes" / "collision"
+    # Absolute mesh paths survive attach() and to_xml(); the .dae visuals are discarded.
+    text = text.replace(
+        "package://example-robot-data/robots/panda_description/meshes/collision/", f"{meshes}/"
+    )
+    compiler = '<mujoco><compiler fusestatic="false" discardvisual="true"/></mujoco>'
+    robot_tag_end = text.index(">", text.index("<robot")) + 1
+    text = text[:robot_tag_end] + compiler + text[robot_tag_end:]
+    spec = mujoco.MjSpec.from_string(text)
+    _tune_arm(spec)
+    _add_gripper(spec, config)
+    spec.body("panda_hand_tcp").add_site(name=c.TCP_SITE, size=[0.005, 0, 0], rgba=[0, 1, 0, 0])
+    return spec
+
+
+def _tune_arm(spec: mujoco.MjSpec) -> None:
+    for name, kp, torque in zip(c.ARM_JOINTS, c.JOINT_KP, c.JOINT_TORQUE_LIMITS):
+        joint = spec.joint(name)
+        joint.armature = 0.1
+        joint.damping = [1.0, 0.0, 0.0]
+        act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_position(kp=kp, kv=0.0)
+        act.ctrlrange = joint.range
+        act.ctrllimited = True
+        act.forcerange = [-torque, torque]
+        act.forcelimited = True
+    for body in spec.bodies:
+        if body.name.startswith("panda_") and body.name != "panda_link0":
+            body.gravcomp = 1.0
+
+
+def _add_gripper(spec: mujoco.MjSpec, config: SimConfig) -> None:
+    grip = config.gripper
+    for joint_name in c.FINGER_JOINTS:
+        joint = spec.joint(joint_name)
+        joint.range = [0.0, grip.stroke]
+        joint.damping = [2.0, 0.0, 0.0]
+        joint.armature = 0.01
+    for body_name, pad_name in zip(c.FINGER_BODIES, c.PAD_GEOMS):
+        pad = spec.body(body_name).geoms[3]  # the URDF's "rubber tip with which to grasp"
+        pad.name = pad_name
+        pad.friction = [grip.pad_friction, 0.02, 0.0002]
+        pad.condim = 4
+        pad.priority = 1
+        pad.solref = list(PAD_SOLREF)
+        pad.solimp = list(PAD_SOLIMP)
+        pad.rgba = [0.15, 0.15, 0.15, 1]
+    tendon = spec.add_tendon(name=c.GRIPPER_TENDON)
+    for joint_name in c.FINGER_JOINTS:
+        tendon.wrap_joint(joint_name, 1.0)
+    # The URDF's <mimic> arrives as a joint equality; stiffen it so the fingers stay symmetric.
+    for eq in spec.equalities:
+        if eq.type == mujoco.mjtEq.mjEQ_JOINT:
+            eq.solref = [0.005, 1.0]
+    act = spec.add_actuator(
+        name=c.GRIPPER_ACTUATOR, target=c.GRIPPER_TENDON, trntype=mujoco.mjtTrn.mjTRN_TENDON
+    )
+    # Stiff enough that any gap command short of the brick saturates at the force limit.
+    act.set_to_position(kp=2000.0, kv=40.0)
+    act.ctrlrange = [0.0, 2 * grip.stroke]
+    act.ctrllimited = True
+    act.forcerange = [-grip.force, grip.force]
+    act.forcelimited = True
+
+
+def brick_spec(config: SimConfig) -> mujoco.MjSpec:
+    """The brick of assets/brick.xml sized, weighed and with the friction of this run."""
+    spec = mujoco.MjSpec.from_file(str(ASSETS / "brick.xml"))
+    brick = config.brick
+    geom = spec.geom("geom")
+    geom.size = [brick.length / 2, brick.width / 2, brick.height / 2]
+    geom.mass = brick.mass
+    geom.friction = [brick.friction, 0.005, 0.0001]
+    return spec
+
+
+def park_position(slot: int) -> np.ndarray:
+    """Where magazine brick `slot` waits: a grid on the floor behind the robots."""
+    row, col = divmod(slot, 8)
+    return np.array([-0.55 - 0.14 * row, -0.7 + 0.2 * col, PARK_Z])
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A compiled scene and the number of bricks in its magazine."""
+
+    model: mujoco.MjModel
+    n_bricks: int
+
+
+def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) -> mujoco.MjSpec:
+    """The full scene as an MjSpec (without bricks: the arms-only model used for IK)."""
+    spec = mujoco.MjSpec.from_file(str(ASSETS / "scene.xml"))
+    spec.option.timestep = config.timestep
+    layout = config.layout
+    spawn = spec.site("spawn_marker")
+    spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
+    spawn.quat = _yaw_quat(layout.spawn_yaw)
+    for arm, base in zip(c.ARMS, (layout.left_base, layout.right_base)):
+        frame = spec.worldbody.add_frame(pos=list(base))
+        spec.attach(panda_spec(config), prefix=f"{arm}/", frame=frame)
+    if with_bricks:
+        for slot in range(n_bricks):
+            frame = spec.worldbody.add_frame(pos=list(park_position(slot)))
+            spec.attach(brick_spec(config), prefix=c.brick_name(slot), frame=frame)
+    return spec
+
+
+def build_scene(config: SimConfig, n_bricks: int) -> Scene:
+    """Compile the full scene with a magazine of `n_bricks` bricks."""
+    model = build_spec(config, n_bricks).compile()
+    return Scene(model=model, n_bricks=n_bricks)
+
+
+def _yaw_quat(yaw: float) -> list[float]:
+    return [math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]

@@ -1,0 +1,322 @@
+"""The physics loop: composes plan, scheduler, primitives, IK and spawner around mj_step."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import mujoco
+import numpy as np
+
+from . import constants as c
+from .arm_runner import ArmRunner
+from .config import SimConfig
+from .errors import SimulationError
+from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
+from .plan import Plan
+from .poses import Pose, tcp_rotation
+from .primitives import StepKind, YAW_REFERENCE, clear_steps, pick_steps, place_steps, clear_pose
+from .scene import build_scene
+from .scheduler import Action, LockstepScheduler, Task
+from .spawner import Spawner
+from .zone import shared_zone
+
+GRASP_HEIGHT = 0.012  # m: grip above the brick centre, so the hand clears the brick's top
+DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
+ZONE_BODIES = ("panda_hand", "panda_link6", "panda_link4")
+Observer = Callable[[mujoco.MjModel, mujoco.MjData], None]
+
+
+@dataclass
+class Carry:
+    """A brick in a hand: its slot, build index and pose in the tool frame at the grip."""
+
+    slot: int
+    index: int
+    offset: np.ndarray
+    max_slip: float = 0.0
+
+
+@dataclass
+class RawResult:
+    """What the loop measured; `results.py` turns it into the result document."""
+
+    plan: Plan
+    slot_of: dict[int, int]
+    final_pos: np.ndarray
+    final_quat: np.ndarray
+    slip_mm: dict[int, float]
+    dropped: set[int]
+    sim_time: float
+    wall_time: float
+    arm_arm_contacts: int
+    zone_violations: int
+    finger_limit_mm: float
+    joint_speed_ratio: float
+    joint_torque_ratio: float
+    warnings: dict[str, int]
+    failure: str | None
+    physics_steps: int = 0
+    timings: dict[str, float] = field(default_factory=dict)
+
+
+class BuildSim:
+    """One build of a plan in a freshly compiled scene."""
+
+    def __init__(self, plan: Plan, config: SimConfig, spare_bricks: int = 0) -> None:
+        self.plan = plan
+        self.config = config
+        scene = build_scene(config, len(plan.bricks) + spare_bricks)
+        self.model = scene.model
+        self.data = mujoco.MjData(self.model)
+        self.ik = DualArmIK(config)
+        m = self.model
+        self.qadr = {a: arm_qpos_addresses(m, a) for a in c.ARMS}
+        self.dadr = {a: arm_dof_addresses(m, a) for a in c.ARMS}
+        self.act = {a: np.array([m.actuator(c.prefixed(a, j)).id for j in c.ARM_JOINTS]) for a in c.ARMS}
+        self.grip_act = {a: m.actuator(c.prefixed(a, c.GRIPPER_ACTUATOR)).id for a in c.ARMS}
+        self.finger_qadr = {
+            a: [m.joint(c.prefixed(a, j)).qposadr[0] for j in c.FINGER_JOINTS] for a in c.ARMS
+        }
+        self.tcp_site = {a: m.site(c.prefixed(a, c.TCP_SITE)).id for a in c.ARMS}
+        self.zone_bodies = {a: [m.body(c.prefixed(a, b)).id for b in ZONE_BODIES] for a in c.ARMS}
+        self.arm_bodies = {
+            a: {i for i in range(m.nbody) if m.body(i).name.startswith(f"{a}/")} for a in c.ARMS
+        }
+        brick = config.brick
+        self.zone = shared_zone(
+            plan.spawn, [b.target.pose for b in plan.bricks], brick.length / 2, 0.04
+        )
+        self.spawner = Spawner(m, scene.n_bricks, plan.spawn, clear_radius=0.16)
+        self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
+        self._reset_arms()
+        self.runners = {
+            a: ArmRunner(a, config, self.ik.tcp_pose(a), 2 * config.gripper.stroke) for a in c.ARMS
+        }
+        self.carry: dict[str, Carry | None] = {a: None for a in c.ARMS}
+        self.slot_of: dict[int, int] = {}
+        self.slip_mm: dict[int, float] = {}
+        self.dropped: set[int] = set()
+        self.placed = 0
+        self.arm_arm_contacts = 0
+        self.zone_violations = 0
+        self.finger_limit = 0.0
+        self.speed_ratio = 0.0
+        self.torque_ratio = 0.0
+        self.steps = 0
+        self.vel_limits = np.array(c.JOINT_VELOCITY_LIMITS)
+        self.torque_limits = np.array(c.JOINT_TORQUE_LIMITS)
+
+    def _reset_arms(self) -> None:
+        d, m = self.data, self.model
+        home = np.array(c.HOME_QPOS)
+        for a in c.ARMS:
+            d.qpos[self.qadr[a]] = home
+            d.ctrl[self.act[a]] = home
+            d.ctrl[self.grip_act[a]] = 2 * self.config.gripper.stroke
+            for q in self.finger_qadr[a]:
+                d.qpos[q] = self.config.gripper.stroke
+        self.ik.reset(home, home)
+        mujoco.mj_forward(m, d)
+
+    # --- measurements -------------------------------------------------------------------
+    def tcp(self, arm: str) -> tuple[np.ndarray, np.ndarray]:
+        site = self.tcp_site[arm]
+        return self.data.site_xpos[site], self.data.site_xmat[site].reshape(3, 3)
+
+    def brick_in_tcp(self, arm: str, slot: int) -> np.ndarray:
+        p, r = self.tcp(arm)
+        return r.T @ (self.data.xpos[self.spawner.body[slot]] - p)
+
+    def _arm_outside(self, arm: str) -> bool:
+        return not self.zone.any_inside(self.data.xpos[b] for b in self.zone_bodies[arm])
+
+    def _count_arm_contacts(self) -> None:
+        d, m = self.data, self.model
+        left, right = self.arm_bodies["left"], self.arm_bodies["right"]
+        for i in range(d.ncon):
+            con = d.contact[i]
+            b1, b2 = m.geom_bodyid[con.geom1], m.geom_bodyid[con.geom2]
+            if (b1 in left and b2 in right) or (b1 in right and b2 in left):
+                self.arm_arm_contacts += 1
+
+    def _track_limits(self) -> None:
+        d = self.data
+        stroke = self.config.gripper.stroke
+        for a in c.ARMS:
+            fingers = d.qpos[self.finger_qadr[a]]
+            over = max(float(np.max(fingers - stroke)), float(np.max(-fingers)), 0.0)
+            self.finger_limit = max(self.finger_limit, over)
+            speed = np.max(np.abs(d.qvel[self.dadr[a]]) / self.vel_limits)
+            torque = np.max(np.abs(d.actuator_force[self.act[a]]) / self.torque_limits)
+            self.speed_ratio = max(self.speed_ratio, float(speed))
+            self.torque_ratio = max(self.torque_ratio, float(torque))
+
+    def _track_carries(self) -> None:
+        for a in c.ARMS:
+            carry = self.carry[a]
+            if carry is None:
+                continue
+            step = self.runners[a].current
+            if step is not None and step.kind is StepKind.RELEASE:
+                # Set down: the carry is over, what follows is the release.
+                self.slip_mm[carry.index] = carry.max_slip * 1000.0
+                self.carry[a] = None
+                continue
+            slip = float(np.linalg.norm(self.brick_in_tcp(a, carry.slot) - carry.offset))
+            carry.max_slip = max(carry.max_slip, slip)
+            if slip > DROP_DISTANCE and carry.index not in self.dropped:
+                self.dropped.add(carry.index)
+
+    # --- control ------------------------------------------------------------------------
+    def _assign(self, arm: str) -> None:
+        """Give an idle arm the steps of its task in the current phase."""
+        runner = self.runners[arm]
+        task = self.scheduler.task(arm)
+        motion = self.config.motion
+        if task.action is Action.PICK:
+            runner.load(pick_steps(self.plan.spawn, motion, GRASP_HEIGHT, YAW_REFERENCE))
+        elif task.action is Action.PLACE:
+            assert task.brick is not None
+            target = self.plan.bricks[task.brick].target.pose
+            runner.load(place_steps(target, motion, GRASP_HEIGHT, YAW_REFERENCE))
+        elif task.action is Action.CLEAR:
+            runner.load(clear_steps(arm, motion))
+        self._task_of[arm] = task
+
+    def _held(self, arm: str) -> bool:
+        step = self.runners[arm].current
+        if step is None or not step.enters_zone or self.runners[arm]._t > 0.0:
+            return False
+        if not self.scheduler.may_enter(arm):
+            return True
+        return step.name == "hover" and self._task_of[arm].action is Action.PICK and not self.spawner.brick_ready()
+
+    def _on_step_done(self, arm: str, step_kind: StepKind) -> None:
+        task = self._task_of[arm]
+        if step_kind is StepKind.GRIP:
+            slot = self.spawner.current
+            assert slot is not None and task.brick is not None
+            self.spawner.taken(slot)
+            self.slot_of[task.brick] = slot
+            self.carry[arm] = Carry(slot, task.brick, self.brick_in_tcp(arm, slot).copy())
+        elif step_kind is StepKind.RELEASE:
+            self.placed += 1
+            if self.on_placed is not None:
+                self.on_placed(self.placed)
+
+    def run(
+        self,
+        on_placed: Callable[[int], None] | None = None,
+        observer: Observer | None = None,
+        observe_dt: float | None = None,
+    ) -> RawResult:
+        """Build the plan; `observer` is called every `observe_dt` of sim time (for video)."""
+        self.on_placed = on_placed
+        self._task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
+        cfg = self.config
+        m, d = self.model, self.data
+        dt = cfg.motion.control_dt
+        n_sub = cfg.substeps
+        failure: str | None = None
+        start = time.perf_counter()
+        next_frame = 0.0
+        retract = {a: False for a in c.ARMS}
+        settle_until: float | None = None
+        for a in c.ARMS:
+            self.runners[a].load([])
+        while True:
+            if self.spawner.current is None and self.spawner.remaining > 0 and self._needs_brick():
+                hands = [self.tcp(a)[0] for a in c.ARMS]
+                if self.spawner.spot_clear(d, hands):
+                    self.spawner.spawn_next(d)
+            outside = {a: self._arm_outside(a) for a in c.ARMS}
+            for a in c.ARMS:
+                self.scheduler.report_zone(a, outside[a])
+            if not outside["left"] and not outside["right"]:
+                self.zone_violations += 1
+            if self.scheduler.finished:
+                for a in c.ARMS:
+                    if not retract[a] and not self.runners[a].busy:
+                        self.runners[a].load(clear_steps(a, cfg.motion))
+                        retract[a] = True
+                if all(retract.values()) and not any(r.busy for r in self.runners.values()):
+                    if settle_until is None:
+                        settle_until = d.time + cfg.settle_time
+                    elif d.time >= settle_until:
+                        break
+            else:
+                for a in c.ARMS:
+                    if not self.runners[a].busy and self._task_of[a] is not self.scheduler.task(a):
+                        self._assign(a)
+            q_prev = {a: self.ik.arm_q(a) for a in c.ARMS}
+            gap_prev = {a: self.runners[a].gap for a in c.ARMS}
+            for a in c.ARMS:
+                runner = self.runners[a]
+                if runner.busy and not self._held(a):
+                    done = runner.tick(dt, self.ik.error(a)[0])
+                    if done is not None:
+                        self._on_step_done(a, done.kind)
+                        if not runner.busy and not self.scheduler.finished:
+                            self.scheduler.complete(a)
+                self.ik.set_target(a, self.runners[a].pose)
+            self.ik.step()
+            for k in range(1, n_sub + 1):
+                f = k / n_sub
+                for a in c.ARMS:
+                    q1 = self.ik.arm_q(a)
+                    d.ctrl[self.act[a]] = q_prev[a] + (q1 - q_prev[a]) * f
+                    g0, g1 = gap_prev[a], self.runners[a].gap
+                    d.ctrl[self.grip_act[a]] = g0 + (g1 - g0) * f
+                mujoco.mj_step(m, d)
+                self.steps += 1
+                self._count_arm_contacts()
+                self._track_limits()
+                if observer is not None and observe_dt is not None and d.time >= next_frame - 1e-9:
+                    observer(m, d)
+                    next_frame += observe_dt
+            self._track_carries()
+            if not np.all(np.isfinite(d.qpos)):
+                failure = f"simulation diverged (NaN in the state) at t = {d.time:.2f} s"
+                break
+            if d.time > cfg.max_sim_time:
+                failure = f"build did not finish within {cfg.max_sim_time:g} s of simulated time"
+                break
+        wall = time.perf_counter() - start
+        return self._result(failure, wall)
+
+    def _needs_brick(self) -> bool:
+        """A brick is needed while some pick is still to come."""
+        picked = len(self.slot_of)
+        return picked + (1 if self.spawner.current is not None else 0) < len(self.plan.bricks)
+
+    def _result(self, failure: str | None, wall: float) -> RawResult:
+        d = self.data
+        n = len(self.spawner.qadr)
+        pos = np.array([d.qpos[q : q + 3] for q in self.spawner.qadr]).reshape(n, 3)
+        quat = np.array([d.qpos[q + 3 : q + 7] for q in self.spawner.qadr]).reshape(n, 4)
+        warnings = {
+            mujoco.mjtWarning(i).name: int(d.warning[i].number)
+            for i in range(len(d.warning))
+            if d.warning[i].number
+        }
+        return RawResult(
+            plan=self.plan,
+            slot_of=dict(self.slot_of),
+            final_pos=pos,
+            final_quat=quat,
+            slip_mm=dict(self.slip_mm),
+            dropped=set(self.dropped),
+            sim_time=float(d.time),
+            wall_time=wall,
+            arm_arm_contacts=self.arm_arm_contacts,
+            zone_violations=self.zone_violations,
+            finger_limit_mm=self.finger_limit * 1000.0,
+            joint_speed_ratio=self.speed_ratio,
+            joint_torque_ratio=self.torque_ratio,
+            warnings=warnings,
+            failure=failure,
+            physics_steps=self.steps,
+        )

@@ -1,0 +1,52 @@
+"""The brick spawner: a magazine of parked bricks, the next one set on the spawn spot when the
+previous one has been taken away (MuJoCo cannot add bodies without recompiling)."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from . import constants as c
+from .poses import Pose
+
+
+class Spawner:
+    def __init__(self, model: mujoco.MjModel, n_bricks: int, spawn: Pose, clear_radius: float):
+        self.spawn = spawn
+        self.clear_radius = clear_radius
+        self.qadr = [model.joint(c.brick_name(i) + "joint").qposadr[0] for i in range(n_bricks)]
+        self.dadr = [model.joint(c.brick_name(i) + "joint").dofadr[0] for i in range(n_bricks)]
+        self.body = [model.body(c.brick_name(i) + "brick").id for i in range(n_bricks)]
+        self.next_slot = 0
+        self.current: int | None = None  # slot on the spawn spot, not yet taken
+
+    @property
+    def remaining(self) -> int:
+        return len(self.qadr) - self.next_slot
+
+    def brick_ready(self) -> bool:
+        return self.current is not None
+
+    def taken(self, slot: int) -> None:
+        """An arm gripped the brick in `slot`: the spot is no longer holding a fresh brick."""
+        if slot == self.current:
+            self.current = None
+
+    def spot_clear(self, data: mujoco.MjData, points: list[np.ndarray]) -> bool:
+        """No brick and none of the given points (hands) within clear_radius of the spot."""
+        centre = self.spawn.position
+        bricks = (data.xpos[b] for b in self.body[: self.next_slot])
+        return all(np.linalg.norm(p - centre) > self.clear_radius for p in (*bricks, *points))
+
+    def spawn_next(self, data: mujoco.MjData) -> int:
+        """Teleport the next parked brick onto the spot, at rest; returns its slot."""
+        slot = self.next_slot
+        q, v = self.qadr[slot], self.dadr[slot]
+        yaw = self.spawn.yaw
+        data.qpos[q : q + 3] = self.spawn.position
+        data.qpos[q + 3 : q + 7] = [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)]
+        data.qvel[v : v + 6] = 0.0
+        self.next_slot += 1
+        self.current = slot
+        return slot
+

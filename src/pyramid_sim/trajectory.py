@@ -1,0 +1,50 @@
+"""Smooth Cartesian moves between poses: straight lines with a minimum-jerk time profile."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .poses import Pose, wrap_angle
+
+
+def min_jerk(s: float) -> float:
+    """Minimum-jerk progress 0..1 for normalised time s in 0..1 (zero speed and acceleration
+    at both ends, so a held brick is never jolted)."""
+    s = min(1.0, max(0.0, s))
+    return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A straight move from `start` to `end` taking `duration` seconds."""
+
+    start: Pose
+    end: Pose
+    duration: float
+
+    def at(self, t: float) -> Pose:
+        """Pose at time t (s) since the segment began; `end` once t >= duration."""
+        if self.duration <= 0.0:
+            return self.end
+        p = min_jerk(t / self.duration)
+        dyaw = wrap_angle(self.end.yaw - self.start.yaw)
+        return Pose(
+            self.start.x + p * (self.end.x - self.start.x),
+            self.start.y + p * (self.end.y - self.start.y),
+            self.start.z + p * (self.end.z - self.start.z),
+            self.start.yaw + p * dyaw,
+        )
+
+
+def plan_segment(
+    start: Pose, end: Pose, speed: float, turn_rate: float, min_duration: float = 0.1
+) -> Segment:
+    """A segment whose peak speed is `speed` (m/s) and peak turn rate `turn_rate` (rad/s).
+
+    A minimum-jerk profile peaks at 1.875 times its mean speed.
+    """
+    distance = math.dist((start.x, start.y, start.z), (end.x, end.y, end.z))
+    turn = abs(wrap_angle(end.yaw - start.yaw))
+    duration = 1.875 * max(distance / speed, turn / turn_rate)
+    return Segment(start, end, max(min_duration, duration))
