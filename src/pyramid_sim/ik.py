@@ -35,7 +35,11 @@ class DualArmIK:
     joint position and velocity limits."""
 
     def __init__(
-        self, config: SimConfig, posture_cost: float = 1e-2, damping: float = 1e-2
+        self,
+        config: SimConfig,
+        posture_cost: float = 1e-2,
+        damping: float = 1e-2,
+        limit_acceleration: bool = True,
     ) -> None:
         self.damping = damping
         self.model = build_spec(config, 0, with_bricks=False).compile()
@@ -66,17 +70,25 @@ class DualArmIK:
         dof = {arm: arm_dof_addresses(self.model, arm) for arm in c.ARMS}
         self.max_dv = np.full(self.model.nv, np.inf)
         for arm in c.ARMS:
-            self.max_dv[dof[arm]] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
+            if limit_acceleration:
+                self.max_dv[dof[arm]] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
         self.velocity = np.zeros(self.model.nv)
+        arm_q = np.concatenate([self.qadr[arm] for arm in c.ARMS])
+        self.limited_q = arm_q
+        self.q_low = self.model.jnt_range[[self.model.jnt_qposadr.tolist().index(a) for a in arm_q], 0]
+        self.q_high = self.model.jnt_range[[self.model.jnt_qposadr.tolist().index(a) for a in arm_q], 1]
         self.reset(np.array(c.HOME_QPOS), np.array(c.HOME_QPOS))
 
     def reset(self, left_q: np.ndarray, right_q: np.ndarray) -> None:
-        """Put both arms at the given joint positions; posture pulls back towards them."""
+        """Put both arms at the given joint positions; posture pulls towards the home pose."""
+        home = self.model.qpos0.copy()
+        for arm in c.ARMS:
+            home[self.qadr[arm]] = c.HOME_QPOS
+        self.posture.set_target(home)
         q = self.model.qpos0.copy()
         q[self.qadr["left"]] = left_q
         q[self.qadr["right"]] = right_q
         self.configuration.update(q)
-        self.posture.set_target(q)
         self.velocity = np.zeros(self.model.nv)
         for arm in c.ARMS:
             self.tasks[arm].set_target(self.configuration.get_transform_frame_to_world(
@@ -113,8 +125,13 @@ class DualArmIK:
             limits=self.limits,
         )
         velocity = np.clip(velocity, self.velocity - self.max_dv, self.velocity + self.max_dv)
+        q_next = self.configuration.integrate(velocity, self.dt)
+        # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
+        q_next[self.limited_q] = np.clip(
+            q_next[self.limited_q], self.q_low, self.q_high
+        )
         self.velocity = velocity
-        self.configuration.integrate_inplace(velocity, self.dt)
+        self.configuration.update(q_next)
 
     def error(self, arm: str) -> tuple[float, float]:
         """Position (m) and orientation (rad) error of the arm's frame task."""
@@ -124,8 +141,12 @@ class DualArmIK:
     def solve(self, arm: str, pose: Pose, max_steps: int = 400, tol: float = 1e-3) -> np.ndarray:
         """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""
         self.set_target(arm, pose)
+        pos_err = float("inf")
         for _ in range(max_steps):
-            self.step()
+            try:
+                self.step()
+            except mink.NoSolutionFound:
+                break
             pos_err, rot_err = self.error(arm)
             if pos_err < tol and rot_err < 0.01:
                 return self.arm_q(arm)

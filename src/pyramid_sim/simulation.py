@@ -82,9 +82,13 @@ class BuildSim:
         }
         self.tcp_site = {a: m.site(c.prefixed(a, c.TCP_SITE)).id for a in c.ARMS}
         self.zone_bodies = {a: [m.body(c.prefixed(a, b)).id for b in ZONE_BODIES] for a in c.ARMS}
-        self.arm_bodies = {
-            a: {i for i in range(m.nbody) if m.body(i).name.startswith(f"{a}/")} for a in c.ARMS
-        }
+        # Which arm each geom belongs to (0 none, 1 left, 2 right), for vectorised contact checks.
+        body_arm = np.zeros(m.nbody, dtype=np.int8)
+        for i in range(m.nbody):
+            for k, a in enumerate(c.ARMS, start=1):
+                if m.body(i).name.startswith(f"{a}/"):
+                    body_arm[i] = k
+        self.geom_arm = body_arm[m.geom_bodyid]
         brick = config.brick
         self.zone = shared_zone(
             plan.spawn, [b.target.pose for b in plan.bricks], brick.length / 2, 0.04
@@ -106,19 +110,25 @@ class BuildSim:
         self.speed_ratio = 0.0
         self.torque_ratio = 0.0
         self.steps = 0
-        self.vel_limits = np.array(c.JOINT_VELOCITY_LIMITS)
-        self.torque_limits = np.array(c.JOINT_TORQUE_LIMITS)
+        self._fingers = np.concatenate([self.finger_qadr[a] for a in c.ARMS])
+        self._dofs = np.concatenate([self.dadr[a] for a in c.ARMS])
+        self._acts = np.concatenate([self.act[a] for a in c.ARMS])
+        self._inv_vel = 1.0 / np.tile(c.JOINT_VELOCITY_LIMITS, 2)
+        self._inv_torque = 1.0 / np.tile(c.JOINT_TORQUE_LIMITS, 2)
 
     def _reset_arms(self) -> None:
+        """Both arms start at their outer clear poses, outside the shared zone."""
         d, m = self.data, self.model
         home = np.array(c.HOME_QPOS)
+        self.ik.reset(home, home)
+        start = {a: self.ik.solve(a, clear_pose(a, self.config.motion)) for a in c.ARMS}
         for a in c.ARMS:
-            d.qpos[self.qadr[a]] = home
-            d.ctrl[self.act[a]] = home
+            d.qpos[self.qadr[a]] = start[a]
+            d.ctrl[self.act[a]] = start[a]
             d.ctrl[self.grip_act[a]] = 2 * self.config.gripper.stroke
             for q in self.finger_qadr[a]:
                 d.qpos[q] = self.config.gripper.stroke
-        self.ik.reset(home, home)
+        self.ik.reset(start["left"], start["right"])
         mujoco.mj_forward(m, d)
 
     # --- measurements -------------------------------------------------------------------
@@ -134,25 +144,21 @@ class BuildSim:
         return not self.zone.any_inside(self.data.xpos[b] for b in self.zone_bodies[arm])
 
     def _count_arm_contacts(self) -> None:
-        d, m = self.data, self.model
-        left, right = self.arm_bodies["left"], self.arm_bodies["right"]
-        for i in range(d.ncon):
-            con = d.contact[i]
-            b1, b2 = m.geom_bodyid[con.geom1], m.geom_bodyid[con.geom2]
-            if (b1 in left and b2 in right) or (b1 in right and b2 in left):
-                self.arm_arm_contacts += 1
+        d = self.data
+        if d.ncon == 0:
+            return
+        arms = self.geom_arm[d.contact.geom[: d.ncon]]
+        self.arm_arm_contacts += int(np.count_nonzero(arms[:, 0] * arms[:, 1] == 2))
 
     def _track_limits(self) -> None:
         d = self.data
-        stroke = self.config.gripper.stroke
-        for a in c.ARMS:
-            fingers = d.qpos[self.finger_qadr[a]]
-            over = max(float(np.max(fingers - stroke)), float(np.max(-fingers)), 0.0)
-            self.finger_limit = max(self.finger_limit, over)
-            speed = np.max(np.abs(d.qvel[self.dadr[a]]) / self.vel_limits)
-            torque = np.max(np.abs(d.actuator_force[self.act[a]]) / self.torque_limits)
-            self.speed_ratio = max(self.speed_ratio, float(speed))
-            self.torque_ratio = max(self.torque_ratio, float(torque))
+        fingers = d.qpos[self._fingers]
+        over = max(float(np.max(fingers)) - self.config.gripper.stroke, -float(np.min(fingers)))
+        self.finger_limit = max(self.finger_limit, over)
+        speed = float(np.max(np.abs(d.qvel[self._dofs]) * self._inv_vel))
+        torque = float(np.max(np.abs(d.actuator_force[self._acts]) * self._inv_torque))
+        self.speed_ratio = max(self.speed_ratio, speed)
+        self.torque_ratio = max(self.torque_ratio, torque)
 
     def _track_carries(self) -> None:
         for a in c.ARMS:
@@ -263,11 +269,11 @@ class BuildSim:
                             self.scheduler.complete(a)
                 self.ik.set_target(a, self.runners[a].pose)
             self.ik.step()
+            q_next = {a: self.ik.arm_q(a) for a in c.ARMS}
             for k in range(1, n_sub + 1):
                 f = k / n_sub
                 for a in c.ARMS:
-                    q1 = self.ik.arm_q(a)
-                    d.ctrl[self.act[a]] = q_prev[a] + (q1 - q_prev[a]) * f
+                    d.ctrl[self.act[a]] = q_prev[a] + (q_next[a] - q_prev[a]) * f
                     g0, g1 = gap_prev[a], self.runners[a].gap
                     d.ctrl[self.grip_act[a]] = g0 + (g1 - g0) * f
                 mujoco.mj_step(m, d)

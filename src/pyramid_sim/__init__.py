@@ -1,0 +1,42 @@
+"""pyramid_sim: two Franka Pandas build brick structures in MuJoCo, after Robot DE NIRO."""
+
+from .assignment import Assignment, arrange
+from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig
+from .errors import ConfigError, PyramidSimError, SimulationError, UnreachableError
+from .plan import Plan, make_plan
+from .poses import Pose
+from .scheduler import Action, LockstepScheduler, Task
+from .structures import (
+    BrickTarget,
+    create_coordinates,
+    create_coordinates_new,
+    make_structure,
+    pyramid,
+    pyramid_even,
+)
+
+__all__ = [
+    "Action",
+    "Assignment",
+    "BrickConfig",
+    "BrickTarget",
+    "ConfigError",
+    "GripperConfig",
+    "LayoutConfig",
+    "LockstepScheduler",
+    "MotionConfig",
+    "Plan",
+    "Pose",
+    "PyramidSimError",
+    "SimConfig",
+    "SimulationError",
+    "Task",
+    "UnreachableError",
+    "arrange",
+    "create_coordinates",
+    "create_coordinates_new",
+    "make_plan",
+    "make_structure",
+    "pyramid",
+    "pyramid_even",
+]

@@ -1,0 +1,158 @@
+"""`pyramid-sim`: plan and build brick structures with two simulated Pandas.
+
+Thin: parses arguments into configuration values (which validate themselves), calls the library,
+prints. Every bad input ends in one line on stderr and exit status 2, before anything is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import tempfile
+import sys
+from dataclasses import replace
+from pathlib import Path
+from typing import NoReturn, Sequence
+
+from .config import BrickConfig, GripperConfig, SimConfig
+from .errors import ConfigError, PyramidSimError
+from .structures import MAX_LAYERS, STRUCTURES
+
+EXIT_FAILED = 1
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:  # one line, no usage block
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def _number(name: str):
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a number") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a finite number")
+        return value
+
+    return parse
+
+
+def _layers(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"layers: {text!r} is not a whole number; accepted 1 to {MAX_LAYERS}"
+        ) from None
+    if not 1 <= value <= MAX_LAYERS:
+        raise argparse.ArgumentTypeError(f"layers: {value} is out of range; accepted 1 to {MAX_LAYERS}")
+    return value
+
+
+def _structure(text: str) -> str:
+    if text not in STRUCTURES:
+        raise argparse.ArgumentTypeError(
+            f"structure: unknown {text!r}; accepted {', '.join(sorted(STRUCTURES))}"
+        )
+    return text
+
+
+def _add_structure_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--structure", type=_structure, default="pyramid-even",
+                   help="pyramid (n, n-1, ..., 1) or pyramid-even (2n, 2n-2, ..., 2)")
+    p.add_argument("--layers", type=_layers, default=4, help=f"1 to {MAX_LAYERS} (default 4)")
+    p.add_argument("--friction", type=_number("friction"), default=BrickConfig.friction,
+                   help="brick friction coefficient (0, 5]")
+    p.add_argument("--brick-mass", type=_number("brick mass"), default=BrickConfig.mass,
+                   help="kg, (0, 5]")
+    p.add_argument("--grip-force", type=_number("grip force"), default=GripperConfig.force,
+                   help="N per finger pad, (0, 140]")
+
+
+def make_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="pyramid-sim", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    plan = sub.add_parser("plan", help="print the build plan as JSON, without simulating")
+    _add_structure_args(plan)
+    build = sub.add_parser("build", help="simulate the build headless and write DIR/result.json")
+    _add_structure_args(build)
+    build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
+    build.add_argument("--quiet", action="store_true", help="no progress bar")
+    return parser
+
+
+def config_from_args(args: argparse.Namespace) -> SimConfig:
+    """The run's configuration; ConfigError if a value is out of range."""
+    base = SimConfig()
+    brick = replace(base.brick, friction=args.friction, mass=args.brick_mass)
+    gripper = replace(base.gripper, force=args.grip_force)
+    return replace(base, brick=brick, gripper=gripper)
+
+
+def check_writable_dir(path: Path) -> None:
+    """ConfigError unless `path` is, or can be made, a writable folder (nothing is created)."""
+    probe = path
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir():
+        raise ConfigError(f"out: {str(probe)!r} is not a folder")
+    try:
+        with tempfile.TemporaryFile(dir=probe):
+            pass
+    except OSError as err:
+        raise ConfigError(f"out: {str(probe)!r} is not writable ({err.strerror})") from None
+
+
+def _cmd_plan(args: argparse.Namespace) -> int:
+    from .plan import make_plan
+
+    config = config_from_args(args)
+    print(json.dumps(make_plan(args.structure, args.layers, config).to_json(), indent=2))
+    return 0
+
+
+def _cmd_build(args: argparse.Namespace) -> int:
+    from .build import prepare, run_build
+    from .results import write_json_atomic
+
+    config = config_from_args(args)
+    check_writable_dir(args.out)
+    plan = prepare(args.structure, args.layers, config)
+    from tqdm import tqdm
+
+    with tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="building") as bar:
+        document = run_build(plan, config, on_placed=lambda n: bar.update(1))
+    write_json_atomic(args.out / "result.json", document)
+    print(
+        f"{document['bricks_placed']}/{document['bricks_total']} bricks in place, "
+        f"worst xy error {document['worst_error_xy_mm']:.2f} mm, max slip "
+        f"{document['max_slip_mm']} mm, {document['sim_s_per_brick']} sim s/brick, "
+        f"{document['real_time_factor']}x real time -> {args.out / 'result.json'}"
+    )
+    if not document["success"]:
+        print(f"build failed: {document['failure_reason']}", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = make_parser()
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "plan":
+            return _cmd_plan(args)
+        return _cmd_build(args)
+    except ConfigError as err:
+        print(f"pyramid-sim: error: {err}", file=sys.stderr)
+        return EXIT_USAGE
+    except (PyramidSimError, OSError) as err:
+        print(f"pyramid-sim: failed: {err}", file=sys.stderr)
+        return EXIT_FAILED
+
+
+if __name__ == "__main__":
+    sys.exit(main())
