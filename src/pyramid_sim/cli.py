@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import tempfile
 import sys
 from dataclasses import replace
@@ -34,9 +33,7 @@ def _number(name: str):
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a number") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a finite number")
-        return value
+        return value  # ranges (and NaN, inf) are checked by the configuration classes
 
     return parse
 

@@ -48,7 +48,7 @@ def grasp_yaw(brick_yaw: float, reference: float) -> float:
 
     The fingers close along the hand's y axis, so the hand yaw equals the brick yaw modulo pi.
     """
-    candidates = (brick_yaw, brick_yaw + math.pi, brick_yaw - math.pi)
+    candidates = (wrap_angle(brick_yaw), wrap_angle(brick_yaw + math.pi))
     return min(candidates, key=lambda y: abs(wrap_angle(y - reference)))
 
 

@@ -1,0 +1,68 @@
+"""Physics: two Pandas build the seed's pyramids; every final brick pose is checked."""
+
+import numpy as np
+import pytest
+
+from pyramid_sim.build import prepare
+from pyramid_sim.config import SimConfig
+from pyramid_sim.simulation import BuildSim
+
+pytestmark = pytest.mark.physics
+
+BUILDS = [("pyramid-even", 4, 20), ("pyramid", 4, 10)]
+
+
+@pytest.mark.parametrize("structure, layers, count", BUILDS)
+def test_every_brick_rests_on_its_target(built, structure, layers, count):
+    result = built(structure, layers)
+    bricks = result["bricks"]
+    assert len(bricks) == count
+    for b in bricks:
+        assert b["final"] is not None, f"brick {b['index']} was never picked"
+        x, y, z = b["final"]["position"]
+        tx, ty, tz = b["target"]["position"]
+        assert abs(x - tx) < 0.005 and abs(y - ty) < 0.005, b
+        assert abs(z - tz) < 0.003, b
+        assert b["yaw_error_deg"] < 3.0, b
+        assert b["tilt_deg"] < 2.0, b
+        assert not b["dropped"], b
+    assert result["bricks_placed"] == count
+    assert result["success"], result["failure_reason"]
+
+
+@pytest.mark.parametrize("structure, layers, count", BUILDS)
+def test_build_is_clean(built, structure, layers, count):
+    result = built(structure, layers)
+    assert result["drops"] == 0
+    assert result["arm_arm_contacts"] == 0
+    assert result["shared_zone_violations"] == 0
+    assert result["finger_limit_excess_mm"] < 0.1  # soft-constraint give only
+    assert result["max_joint_speed_ratio"] <= 1.0
+    assert result["max_joint_torque_ratio"] <= 1.0
+    assert result["mujoco_warnings"] == {}
+    assert result["max_slip_mm"] < 2.0
+    assert all(b["slip_mm"] is not None for b in result["bricks"])
+
+
+def test_same_settings_give_identical_final_poses():
+    config = SimConfig()
+    plan = prepare("pyramid", 2, config)
+    first = BuildSim(plan, config).run()
+    second = BuildSim(plan, config).run()
+    assert first.failure is None
+    np.testing.assert_array_equal(first.final_pos, second.final_pos)
+    np.testing.assert_array_equal(first.final_quat, second.final_quat)
+    assert first.physics_steps == second.physics_steps
+
+
+def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
+    """The measurement can fail: a 1 N grip on a 0.5 kg brick cannot lift it."""
+    from dataclasses import replace
+
+    from pyramid_sim.build import run_build
+
+    base = SimConfig()
+    config = replace(base, gripper=replace(base.gripper, force=1.0), max_sim_time=60.0)
+    result = run_build(prepare("pyramid", 1, config), config)
+    assert not result["success"]
+    assert result["bricks_placed"] == 0

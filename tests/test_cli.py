@@ -1,0 +1,65 @@
+"""The command line: plan JSON, bad input (one line, exit 2, nothing written), a real build."""
+
+import json
+
+import pytest
+
+from pyramid_sim.cli import main
+
+
+def test_plan_prints_the_build_order(capsys):
+    assert main(["plan", "--structure", "pyramid", "--layers", "4"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["structure"] == "pyramid"
+    assert doc["spawn"]["position"] == [0.49, 0.01, 0.11]
+    assert len(doc["bricks"]) == 10
+    first = doc["bricks"][0]
+    assert set(first) == {"index", "arm", "layer", "position", "yaw"}
+    assert (first["arm"], first["layer"], first["position"]) == ("left", 0, [0.732, 0.184, 0.11])
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["plan", "--layers", "0"], "layers"),
+        (["plan", "--layers", "abc"], "layers"),
+        (["plan", "--structure", "cube"], "structure"),
+        (["build", "--brick-mass", "-1"], "brick mass"),
+        (["build", "--friction", "-0.5"], "friction"),
+        (["build", "--friction", "nan"], "friction"),
+        (["build", "--grip-force", "0"], "grip force"),
+        (["build", "--layers", "9"], "largest reachable"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, args, words):
+    out = tmp_path / "run"
+    with pytest.raises(SystemExit) as exit_info:
+        raise SystemExit(main([*args, "--out", str(out)] if args[0] == "build" else args))
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1
+    assert words in err and "accepted" in err or "largest reachable" in err
+    assert "Traceback" not in err
+    assert not out.exists()
+
+
+def test_unwritable_out_is_refused_before_physics(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    assert main(["build", "--layers", "1", "--out", str(blocker / "run")]) == 2
+    assert "out" in capsys.readouterr().err
+
+
+@pytest.mark.physics
+def test_build_writes_the_result(tmp_path):
+    out = tmp_path / "run"
+    code = main(["build", "--structure", "pyramid", "--layers", "1", "--quiet", "--out", str(out)])
+    doc = json.loads((out / "result.json").read_text())
+    assert code == 0 and doc["success"]
+    assert doc["bricks_placed"] == 1
+    for key in ("sim_time_s", "wall_time_s", "max_slip_mm", "drops", "arm_arm_contacts", "mujoco_warnings"):
+        assert key in doc
+    brick = doc["bricks"][0]
+    for key in ("index", "arm", "layer", "target", "final", "error_xy_mm", "error_z_mm",
+                "yaw_error_deg", "tilt_deg", "dropped"):
+        assert key in brick

@@ -1,0 +1,45 @@
+"""The scene compiles with what issue 2 asks for, and is stable under noisy commands."""
+
+import mujoco
+import numpy as np
+
+from pyramid_sim import constants as c
+from pyramid_sim.config import BrickConfig, SimConfig
+from pyramid_sim.scene import build_scene
+
+
+def test_scene_holds_two_pandas_a_table_and_the_magazine():
+    model = build_scene(SimConfig(), 5).model
+    for arm in c.ARMS:
+        for joint in c.ARM_JOINTS:
+            assert model.actuator(c.prefixed(arm, joint)).forcerange[1] in c.JOINT_TORQUE_LIMITS
+        finger = model.joint(c.prefixed(arm, c.FINGER_JOINTS[0]))
+        assert finger.range[1] == 0.05  # widened for the 86 mm brick
+    assert model.geom(c.TABLE_GEOM) is not None
+    assert sum(model.body(i).name.endswith("/brick") for i in range(model.nbody)) == 5
+
+
+def test_brick_mass_and_friction_are_settable():
+    config = SimConfig(brick=BrickConfig(mass=0.8, friction=0.6))
+    model = build_scene(config, 1).model
+    geom = model.geom(c.brick_name(0) + "geom")
+    assert model.body(c.brick_name(0) + "brick").mass[0] == np.float64(0.8)
+    assert geom.friction[0] == 0.6
+    assert geom.size.tolist() == [0.096, 0.043, 0.031]
+
+
+def test_noisy_commands_for_one_second_raise_no_warning():
+    model = build_scene(SimConfig(), 4).model
+    data = mujoco.MjData(model)
+    rng = np.random.default_rng(0)
+    home = np.array(c.HOME_QPOS)
+    for arm in c.ARMS:
+        for j, q in zip(c.ARM_JOINTS, home):
+            data.qpos[model.joint(c.prefixed(arm, j)).qposadr[0]] = q
+    mujoco.mj_forward(model, data)
+    low, high = model.actuator_ctrlrange.T
+    for _ in range(int(1.0 / model.opt.timestep)):
+        data.ctrl[:] = np.clip(data.ctrl + rng.normal(0, 0.01, model.nu), low, high)
+        mujoco.mj_step(model, data)
+    assert all(w.number == 0 for w in data.warning)
+    assert np.all(np.isfinite(data.qpos))
