@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any, Callable
 
-from .config import SimConfig
+from .config import SimConfig, VideoConfig
 from .plan import Plan, make_plan
 from .reach import require_reachable
 from .results import result_document
@@ -24,8 +25,32 @@ def run_build(
     on_placed: Callable[[int], None] | None = None,
     observer: Observer | None = None,
     observe_dt: float | None = None,
+    video: tuple[VideoConfig, Path] | None = None,
+    on_frame: Callable[[int], None] | None = None,
+    snapshot: tuple[VideoConfig, Path] | None = None,
 ) -> dict[str, Any]:
-    """Simulate the plan and return its result document."""
+    """Simulate the plan and return its result document; optionally record an MP4 of the
+    whole build and a still of the final structure (rendering is imported only then)."""
     sim = BuildSim(plan, config)
-    raw = sim.run(on_placed=on_placed, observer=observer, observe_dt=observe_dt)
-    return result_document(raw)
+    recorder = None
+    if video is not None:
+        from .video import Recorder
+
+        recorder = Recorder(sim.model, video[0], video[1], on_frame)
+        observer, observe_dt = recorder, 1.0 / video[0].fps
+    try:
+        raw = sim.run(on_placed=on_placed, observer=observer, observe_dt=observe_dt)
+    except BaseException:
+        if recorder is not None:
+            recorder.abort()
+        raise
+    if recorder is not None:
+        recorder.finish()
+    document = result_document(raw)
+    if recorder is not None:
+        document["video"] = {"path": str(video[1]), "frames": recorder.frames, "fps": video[0].fps}
+    if snapshot is not None:
+        from .video import write_still
+
+        write_still(sim.model, sim.data, snapshot[0], snapshot[1])
+    return document

@@ -14,7 +14,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import NoReturn, Sequence
 
-from .config import BrickConfig, GripperConfig, SimConfig
+from .config import BrickConfig, GripperConfig, SimConfig, VideoConfig
 from .errors import ConfigError, PyramidSimError
 from .structures import MAX_LAYERS, STRUCTURES
 
@@ -78,8 +78,32 @@ def make_parser() -> argparse.ArgumentParser:
     build = sub.add_parser("build", help="simulate the build headless and write DIR/result.json")
     _add_structure_args(build)
     build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
-    build.add_argument("--quiet", action="store_true", help="no progress bar")
+    build.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_video_args(build)
+    view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
+    _add_structure_args(view)
     return parser
+
+
+def _add_video_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--video", type=Path, help="render the build to this MP4 (H.264)")
+    p.add_argument("--snapshot", type=Path, help="write a PNG of the final structure")
+    p.add_argument("--fps", type=_whole("fps"), default=30, help="video frame rate, 1 to 120")
+    p.add_argument("--width", type=_whole("width"), default=640, help="pixels, even, 16 to 1920")
+    p.add_argument("--height", type=_whole("height"), default=480, help="pixels, even, 16 to 1080")
+    p.add_argument("--camera", default="overview", help="overview, front or top")
+    p.add_argument("--shadows", action=argparse.BooleanOptionalAction, default=False,
+                   help="render shadows (about 4x the render cost)")
+
+
+def _whole(name: str):
+    def parse(text: str) -> int:
+        try:
+            return int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a whole number") from None
+
+    return parse
 
 
 def config_from_args(args: argparse.Namespace) -> SimConfig:
@@ -113,16 +137,34 @@ def _cmd_plan(args: argparse.Namespace) -> int:
 
 
 def _cmd_build(args: argparse.Namespace) -> int:
+    config = config_from_args(args)
+    video_config = VideoConfig(args.fps, args.width, args.height, args.camera, args.shadows)
+    check_writable_dir(args.out)
+    for path, suffix in ((args.video, ".mp4"), (args.snapshot, ".png")):
+        if path is not None:
+            if path.suffix.lower() != suffix:
+                raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
+            check_writable_dir(path.parent)
+    if args.video is not None or args.snapshot is not None:
+        from .gl_backend import choose_gl_backend
+
+        choose_gl_backend()  # before mujoco is imported
+    from tqdm import tqdm
+
     from .build import prepare, run_build
     from .results import write_json_atomic
 
-    config = config_from_args(args)
-    check_writable_dir(args.out)
     plan = prepare(args.structure, args.layers, config)
-    from tqdm import tqdm
-
-    with tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="building") as bar:
-        document = run_build(plan, config, on_placed=lambda n: bar.update(1))
+    video = (video_config, args.video) if args.video is not None else None
+    snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
+    with (
+        tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
+        tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
+    ):
+        document = run_build(
+            plan, config, on_placed=lambda n: bar.update(1), video=video,
+            on_frame=lambda n: frames.update(1), snapshot=snapshot,
+        )
     write_json_atomic(args.out / "result.json", document)
     print(
         f"{document['bricks_placed']}/{document['bricks_total']} bricks in place, "
@@ -136,13 +178,41 @@ def _cmd_build(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_view(args: argparse.Namespace) -> int:
+    import time
+
+    import mujoco.viewer
+
+    from .build import prepare
+    from .simulation import BuildSim
+
+    config = config_from_args(args)
+    sim = BuildSim(prepare(args.structure, args.layers, config), config)
+    start = time.perf_counter()
+    try:
+        viewer = mujoco.viewer.launch_passive(sim.model, sim.data)
+    except Exception as err:  # no display, no GLFW
+        raise ConfigError(f"view: cannot open a window ({err}); use build --video instead") from None
+
+    def show(model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        ahead = data.time - (time.perf_counter() - start)
+        if ahead > 0:
+            time.sleep(ahead)  # real-time speed
+        viewer.sync()
+
+    with viewer:
+        sim.run(observer=show, observe_dt=1.0 / 60.0)
+    return 0
+
+
+COMMANDS = {"plan": _cmd_plan, "build": _cmd_build, "view": _cmd_view}
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = make_parser()
     args = parser.parse_args(argv)
     try:
-        if args.command == "plan":
-            return _cmd_plan(args)
-        return _cmd_build(args)
+        return COMMANDS[args.command](args)
     except ConfigError as err:
         print(f"pyramid-sim: error: {err}", file=sys.stderr)
         return EXIT_USAGE

@@ -146,3 +146,29 @@ class SimConfig:
     def substeps(self) -> int:
         """Physics steps per control step."""
         return int(round(self.motion.control_dt / self.timestep))
+
+
+CAMERAS = ("overview", "front", "top")
+
+
+@dataclass(frozen=True)
+class VideoConfig:
+    """What to render: frame rate, size, camera and shadows."""
+
+    fps: int = 30
+    width: int = 640
+    height: int = 480
+    camera: str = "overview"
+    shadows: bool = False
+
+    def __post_init__(self) -> None:
+        check_range("fps", self.fps, 1, 120)
+        check_range("width", self.width, 16, 1920)
+        check_range("height", self.height, 16, 1080)
+        if self.width % 2 or self.height % 2:
+            raise ConfigError(
+                f"size: {self.width}x{self.height} must be even in both (H.264); "
+                "accepted width 16 to 1920, height 16 to 1080"
+            )
+        if self.camera not in CAMERAS:
+            raise ConfigError(f"camera: unknown {self.camera!r}; accepted {', '.join(CAMERAS)}")

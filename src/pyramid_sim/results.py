@@ -119,6 +119,7 @@ def write_json_atomic(path: Path, document: dict[str, Any]) -> None:
     """Write to a temporary file beside `path`, then rename: never a half-written file."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    os.chmod(tmp, 0o644)
     try:
         with os.fdopen(fd, "w") as f:
             json.dump(document, f, indent=2)

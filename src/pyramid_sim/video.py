@@ -1,0 +1,92 @@
+"""Rendering at the edge: an MP4 recorder fed from the physics loop, and stills.
+
+The recorder only reads MjData, so a build with video ends in the same state as one without.
+Files are written under a temporary name and renamed when complete.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Callable
+
+import imageio.v2 as imageio
+import mujoco
+import numpy as np
+
+from .config import VideoConfig
+
+def _temporary_beside(path: Path) -> Path:
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    os.chmod(tmp, 0o644)  # mkstemp makes it private; the finished file is an ordinary one
+    return Path(tmp)
+
+
+class Recorder:
+    """Renders the named camera and appends frames to an H.264 MP4."""
+
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        config: VideoConfig,
+        path: Path,
+        on_frame: Callable[[int], None] | None = None,
+    ) -> None:
+        self.config = config
+        self.path = path
+        self.renderer = mujoco.Renderer(model, height=config.height, width=config.width)
+        self.renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
+        self.camera = model.camera(config.camera).id
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self.tmp = _temporary_beside(path)
+        self.writer = imageio.get_writer(
+            self.tmp, format="FFMPEG", fps=config.fps, codec="libx264", quality=7,
+            macro_block_size=2, pixelformat="yuv420p",
+        )
+        self.frames = 0
+        self.on_frame = on_frame
+
+    def render(self, data: mujoco.MjData) -> np.ndarray:
+        self.renderer.update_scene(data, camera=self.camera)
+        return self.renderer.render()
+
+    def __call__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        self.writer.append_data(self.render(data))
+        self.frames += 1
+        if self.on_frame is not None:
+            self.on_frame(self.frames)
+
+    def finish(self) -> None:
+        """Close the file and move it into place."""
+        self.writer.close()
+        self.renderer.close()
+        os.replace(self.tmp, self.path)
+
+    def abort(self) -> None:
+        """Drop the partial file: an interrupted run leaves nothing under the asked name."""
+        try:
+            self.writer.close()
+        finally:
+            self.renderer.close()
+            self.tmp.unlink(missing_ok=True)
+
+
+def write_still(model: mujoco.MjModel, data: mujoco.MjData, config: VideoConfig, path: Path) -> None:
+    """A PNG of the scene as it is now, written atomically."""
+    renderer = mujoco.Renderer(model, height=config.height, width=config.width)
+    try:
+        renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
+        renderer.update_scene(data, camera=config.camera)
+        image = renderer.render()
+    finally:
+        renderer.close()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = _temporary_beside(path)
+    try:
+        imageio.imwrite(tmp, image, format="PNG")
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise

@@ -1,0 +1,58 @@
+"""Headless MP4 through EGL/OSMesa: frame count, size, content; video does not change physics."""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.physics
+
+
+def _run(args, tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
+    return subprocess.run(
+        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers", "1",
+         "--quiet", *args], capture_output=True, text=True, env=env, cwd=tmp_path, timeout=600,
+    )
+
+
+def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
+    import imageio.v2 as imageio
+
+    proc = _run(["--out", "a", "--video", "a/build.mp4", "--fps", "20", "--width", "320",
+                 "--height", "240", "--snapshot", "a/final.png"], tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads((tmp_path / "a" / "result.json").read_text())
+    reader = imageio.get_reader(tmp_path / "a" / "build.mp4")
+    frames = [f for f in reader]
+    assert abs(len(frames) - doc["sim_time_s"] * 20) <= 1
+    assert frames[0].shape == (240, 320, 3)
+    picks = [frames[0], frames[len(frames) // 2], frames[-1]]
+    assert all(f.std() > 10 for f in picks)  # not blank
+    assert np.abs(picks[0].astype(int) - picks[1].astype(int)).mean() > 1  # the scene moves
+    assert (tmp_path / "a" / "final.png").stat().st_size > 1000
+    assert not [p for p in (tmp_path / "a").iterdir() if p.name.startswith(".")]  # no temp left
+
+    plain = _run(["--out", "b"], tmp_path)
+    assert plain.returncode == 0, plain.stderr
+    without = json.loads((tmp_path / "b" / "result.json").read_text())
+    assert [b["final"] for b in without["bricks"]] == [b["final"] for b in doc["bricks"]]
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--video", "/proc/nope/x.mp4"], "not writable"),
+        (["--video", "v.mp4", "--camera", "sky"], "camera"),
+        (["--video", "v.mp4", "--width", "4000"], "width"),
+        (["--video", "v.txt"], "mp4"),
+    ],
+)
+def test_bad_video_options_fail_before_physics(tmp_path, args, words):
+    proc = _run(["--out", "c", *args], tmp_path)
+    assert proc.returncode == 2
+    assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "c").exists()
