@@ -24,7 +24,6 @@ class ArmRunner:
     _segment: Segment | None = None
     _t: float = 0.0
     _gap_from: float = 0.0
-    _just_finished: Step | None = None
 
     @property
     def busy(self) -> bool:
@@ -33,6 +32,11 @@ class ArmRunner:
     @property
     def current(self) -> Step | None:
         return self.steps[0] if self.steps else None
+
+    @property
+    def started(self) -> bool:
+        """Whether the current step has begun to run."""
+        return self._t > 0.0
 
     @property
     def open_gap(self) -> float:

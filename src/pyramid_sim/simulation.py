@@ -194,7 +194,7 @@ class BuildSim:
 
     def _held(self, arm: str) -> bool:
         step = self.runners[arm].current
-        if step is None or not step.enters_zone or self.runners[arm]._t > 0.0:
+        if step is None or not step.enters_zone or self.runners[arm].started:
             return False
         if not self.scheduler.may_enter(arm):
             return True
