@@ -67,16 +67,15 @@ class DualArmIK:
             mink.ConfigurationLimit(self.model),
             mink.VelocityLimit(self.model, velocities),
         ]
-        dof = {arm: arm_dof_addresses(self.model, arm) for arm in c.ARMS}
         self.max_dv = np.full(self.model.nv, np.inf)
-        for arm in c.ARMS:
-            if limit_acceleration:
-                self.max_dv[dof[arm]] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
+        if limit_acceleration:
+            for arm in c.ARMS:
+                dofs = arm_dof_addresses(self.model, arm)
+                self.max_dv[dofs] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
         self.velocity = np.zeros(self.model.nv)
-        arm_q = np.concatenate([self.qadr[arm] for arm in c.ARMS])
-        self.limited_q = arm_q
-        self.q_low = self.model.jnt_range[[self.model.jnt_qposadr.tolist().index(a) for a in arm_q], 0]
-        self.q_high = self.model.jnt_range[[self.model.jnt_qposadr.tolist().index(a) for a in arm_q], 1]
+        joint_ids = [self.model.joint(c.prefixed(a, j)).id for a in c.ARMS for j in c.ARM_JOINTS]
+        self.limited_q = self.model.jnt_qposadr[joint_ids]
+        self.q_low, self.q_high = self.model.jnt_range[joint_ids].T
         self.reset(np.array(c.HOME_QPOS), np.array(c.HOME_QPOS))
 
     def reset(self, left_q: np.ndarray, right_q: np.ndarray) -> None:

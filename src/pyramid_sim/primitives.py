@@ -15,6 +15,13 @@ from .config import MotionConfig
 from .poses import Pose, grasp_yaw
 
 
+# Grip this far above the brick centre: at the centre the hand's underside is 6 mm above the
+# brick's top and touched it mid-carry.
+GRASP_HEIGHT = 0.012
+# Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
+YAW_REFERENCE = 0.0
+
+
 class StepKind(str, Enum):
     MOVE = "move"
     GRIP = "grip"
@@ -32,7 +39,12 @@ class Step:
     enters_zone: bool = False  # the first step into the shared zone waits for the barrier
 
 
-def pick_steps(brick: Pose, motion: MotionConfig, grasp_height: float, yaw_ref: float) -> list[Step]:
+def pick_steps(
+    brick: Pose,
+    motion: MotionConfig,
+    grasp_height: float = GRASP_HEIGHT,
+    yaw_ref: float = YAW_REFERENCE,
+) -> list[Step]:
     """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre."""
     grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
     half = motion.hover / 2
@@ -46,7 +58,10 @@ def pick_steps(brick: Pose, motion: MotionConfig, grasp_height: float, yaw_ref: 
 
 
 def place_steps(
-    target: Pose, motion: MotionConfig, grasp_height: float, yaw_ref: float
+    target: Pose,
+    motion: MotionConfig,
+    grasp_height: float = GRASP_HEIGHT,
+    yaw_ref: float = YAW_REFERENCE,
 ) -> list[Step]:
     """Steps that set a held brick down at `target` (its resting pose) and let go of it."""
     hold = target.moved(dz=grasp_height).with_yaw(grasp_yaw(target.yaw, yaw_ref))
@@ -68,6 +83,3 @@ def clear_pose(arm: str, motion: MotionConfig) -> Pose:
 def clear_steps(arm: str, motion: MotionConfig) -> list[Step]:
     return [Step("clear", StepKind.MOVE, clear_pose(arm, motion), motion.speed)]
 
-
-# Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
-YAW_REFERENCE = 0.0

@@ -10,8 +10,7 @@ from .errors import ConfigError, UnreachableError
 from .ik import DualArmIK
 from .plan import Plan, make_plan
 from .poses import Pose
-from .primitives import YAW_REFERENCE, clear_pose, pick_steps, place_steps
-from .simulation import GRASP_HEIGHT
+from .primitives import clear_pose, pick_steps, place_steps
 from .structures import MAX_LAYERS
 
 
@@ -22,11 +21,11 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
     for arm in c.ARMS:
         poses.append((arm, "clear pose", clear_pose(arm, motion)))
         if plan.arm_order(arm):
-            for step in pick_steps(plan.spawn, motion, GRASP_HEIGHT, YAW_REFERENCE):
+            for step in pick_steps(plan.spawn, motion):
                 if step.pose is not None:
                     poses.append((arm, f"pick {step.name}", step.pose))
     for b in plan.bricks:
-        for step in place_steps(b.target.pose, motion, GRASP_HEIGHT, YAW_REFERENCE):
+        for step in place_steps(b.target.pose, motion):
             if step.pose is not None:
                 poses.append((b.arm, f"brick {b.index} {step.name}", step.pose))
     return poses

@@ -17,13 +17,12 @@ from .errors import SimulationError
 from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
 from .plan import Plan
 from .poses import Pose, tcp_rotation
-from .primitives import StepKind, YAW_REFERENCE, clear_steps, pick_steps, place_steps, clear_pose
+from .primitives import StepKind, clear_pose, clear_steps, pick_steps, place_steps
 from .scene import build_scene
 from .scheduler import Action, LockstepScheduler, Task
 from .spawner import Spawner
 from .zone import shared_zone
 
-GRASP_HEIGHT = 0.012  # m: grip above the brick centre, so the hand clears the brick's top
 DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 ZONE_BODIES = ("panda_hand", "panda_link6", "panda_link4")
 Observer = Callable[[mujoco.MjModel, mujoco.MjData], None]
@@ -183,22 +182,26 @@ class BuildSim:
         task = self.scheduler.task(arm)
         motion = self.config.motion
         if task.action is Action.PICK:
-            runner.load(pick_steps(self.plan.spawn, motion, GRASP_HEIGHT, YAW_REFERENCE))
+            runner.load(pick_steps(self.plan.spawn, motion))
         elif task.action is Action.PLACE:
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
-            runner.load(place_steps(target, motion, GRASP_HEIGHT, YAW_REFERENCE))
+            runner.load(place_steps(target, motion))
         elif task.action is Action.CLEAR:
             runner.load(clear_steps(arm, motion))
         self._task_of[arm] = task
 
     def _held(self, arm: str) -> bool:
+        """Whether the arm must wait before its first move into the shared zone: until the
+        other arm is out, and for a pick until a brick lies on the spawn spot."""
         step = self.runners[arm].current
         if step is None or not step.enters_zone or self.runners[arm].started:
             return False
         if not self.scheduler.may_enter(arm):
             return True
-        return step.name == "hover" and self._task_of[arm].action is Action.PICK and not self.spawner.brick_ready()
+        task = self._task_of[arm]
+        picking = task is not None and task.action is Action.PICK
+        return picking and not self.spawner.brick_ready()
 
     def _on_step_done(self, arm: str, step_kind: StepKind) -> None:
         task = self._task_of[arm]
