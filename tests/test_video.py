@@ -49,6 +49,7 @@ def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
         (["--video", "v.mp4", "--camera", "sky"], "camera"),
         (["--video", "v.mp4", "--width", "4000"], "width"),
         (["--video", "v.txt"], "mp4"),
+        (["--video", "v.mp4", "--antialias", "3"], "antialias"),
     ],
 )
 def test_bad_video_options_fail_before_physics(tmp_path, args, words):

@@ -153,18 +153,25 @@ CAMERAS = ("overview", "front", "top")
 
 @dataclass(frozen=True)
 class VideoConfig:
-    """What to render: frame rate, size, camera and shadows."""
+    """What to render: frame rate, size, camera, shadows and multisample anti-aliasing.
+
+    Both extras are off by default: on the CPU (llvmpipe) 4x MSAA costs ~1.7x and shadows ~4x
+    the frame time, and the default video must render faster than the build it shows.
+    """
 
     fps: int = 30
     width: int = 640
     height: int = 480
     camera: str = "overview"
     shadows: bool = False
+    antialias: int = 0
 
     def __post_init__(self) -> None:
         check_range("fps", self.fps, 1, 120)
         check_range("width", self.width, 16, 1920)
         check_range("height", self.height, 16, 1080)
+        if self.antialias not in (0, 2, 4, 8):
+            raise ConfigError(f"antialias: {self.antialias} samples; accepted 0, 2, 4 or 8")
         if self.width % 2 or self.height % 2:
             raise ConfigError(
                 f"size: {self.width}x{self.height} must be even in both (H.264); "
