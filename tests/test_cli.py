@@ -29,6 +29,9 @@ def test_plan_prints_the_build_order(capsys):
         (["build", "--friction", "nan"], "friction"),
         (["build", "--grip-force", "0"], "grip force"),
         (["build", "--layers", "9"], "largest reachable"),
+        (["build", "--pad-friction", "inf"], "pad friction"),
+        (["build", "--spawn-jitter", "20"], "spawn jitter"),
+        (["build", "--seed", "-1"], "seed"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, args, words):

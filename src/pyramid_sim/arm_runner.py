@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .config import SimConfig
+from .constants import GRIPPER_KP
 from .poses import Pose
 from .primitives import Step, StepKind
 from .trajectory import Segment, plan_segment
@@ -42,6 +43,16 @@ class ArmRunner:
     def open_gap(self) -> float:
         return 2 * self.config.gripper.stroke
 
+    @property
+    def squeeze_gap(self) -> float:
+        """The gap command at which the pads press the brick with exactly the grip force.
+
+        Grip and release ramp between this and open, not closed: the fingers then meet and
+        leave the brick slowly (a ramp to zero would cross the brick in its first few ticks
+        and shove it, and open at full speed, which tips a brick just let go)."""
+        grip = self.config.gripper
+        return self.config.brick.width - grip.force / GRIPPER_KP
+
     def load(self, steps: list[Step]) -> None:
         self.steps = list(steps)
         self._start_step()
@@ -71,13 +82,15 @@ class ArmRunner:
                 and ik_error <= self.config.motion.position_tolerance
             )
         elif step.kind is StepKind.GRIP:
-            ramp = min(1.0, self._t / grip.close_time)
-            self.gap = self._gap_from + (0.0 - self._gap_from) * ramp
+            ramp = self._t / grip.close_time
+            # Past the ramp the command drops to closed: the force limit keeps the squeeze.
+            self.gap = self._gap_from + (self.squeeze_gap - self._gap_from) * ramp if ramp < 1 else 0.0
             finished = self._t >= grip.close_time + grip.settle_time
         else:  # RELEASE: hold still, then open
             wait = self.config.motion.settle_before_release
             ramp = min(1.0, max(0.0, self._t - wait) / grip.close_time)
-            self.gap = self._gap_from + (self.open_gap - self._gap_from) * ramp
+            start = max(self._gap_from, self.squeeze_gap)
+            self.gap = start + (self.open_gap - start) * ramp if ramp > 0 else self._gap_from
             finished = self._t >= wait + grip.close_time + grip.settle_time
         if not finished:
             return None

@@ -68,6 +68,11 @@ def _add_structure_args(p: argparse.ArgumentParser) -> None:
                    help="kg, (0, 5]")
     p.add_argument("--grip-force", type=_number("grip force"), default=GripperConfig.force,
                    help="N per finger pad, (0, 140]")
+    p.add_argument("--pad-friction", type=_number("pad friction"),
+                   default=GripperConfig.pad_friction, help="finger pad friction coefficient (0, 5]")
+    p.add_argument("--spawn-jitter", type=_number("spawn jitter"), default=0.0, metavar="MM",
+                   help="each spawned brick lands up to MM off the spot in x and y, [0, 10]")
+    p.add_argument("--seed", type=_whole("seed"), default=0, help="of the spawn jitter")
 
 
 def make_parser() -> argparse.ArgumentParser:
@@ -112,8 +117,9 @@ def config_from_args(args: argparse.Namespace) -> SimConfig:
     """The run's configuration; ConfigError if a value is out of range."""
     base = SimConfig()
     brick = replace(base.brick, friction=args.friction, mass=args.brick_mass)
-    gripper = replace(base.gripper, force=args.grip_force)
-    return replace(base, brick=brick, gripper=gripper)
+    gripper = replace(base.gripper, force=args.grip_force, pad_friction=args.pad_friction)
+    layout = replace(base.layout, spawn_jitter_mm=args.spawn_jitter)
+    return replace(base, brick=brick, gripper=gripper, layout=layout, seed=args.seed)
 
 
 def check_writable_dir(path: Path) -> None:

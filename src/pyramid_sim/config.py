@@ -86,8 +86,10 @@ class LayoutConfig:
     table_top_z: float = 0.079
     spawn_xy: tuple[float, float] = (0.49, 0.01)
     spawn_yaw: float = math.pi / 2  # the seed turns the spawned brick 90 degrees
+    spawn_jitter_mm: float = 0.0  # each spawned brick lands up to this far off the spot in x and y
 
     def __post_init__(self) -> None:
+        check_range("spawn jitter (mm)", self.spawn_jitter_mm, 0.0, 10.0)
         check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
         check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)
         check_range("spawn y", self.spawn_xy[1], -0.4, 0.4)
@@ -130,11 +132,16 @@ class SimConfig:
     timestep: float = 0.002
     settle_time: float = 1.0  # s of physics after both arms retract, before measuring
     max_sim_time: float = 300.0  # s, a build still running then has failed
+    stall_time: float = 60.0  # s, a build in which no arm finishes a move for this long has failed
+    seed: int = 0  # of the spawn jitter: the only randomness in a build
 
     def __post_init__(self) -> None:
         check_range("timestep", self.timestep, 0.0005, 0.004)
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
+        check_range("stall time", self.stall_time, 1.0, 36000.0)
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or not 0 <= self.seed < 2**32:
+            raise ConfigError(f"seed: {self.seed!r} is out of range; accepted whole numbers 0 to {2**32 - 1}")
         steps = self.motion.control_dt / self.timestep
         if abs(steps - round(steps)) > 1e-9:
             raise ConfigError(

@@ -103,7 +103,7 @@ def _add_gripper(spec: mujoco.MjSpec, config: SimConfig) -> None:
         name=c.GRIPPER_ACTUATOR, target=c.GRIPPER_TENDON, trntype=mujoco.mjtTrn.mjTRN_TENDON
     )
     # Stiff enough that any gap command short of the brick saturates at the force limit.
-    act.set_to_position(kp=2000.0, kv=40.0)
+    act.set_to_position(kp=c.GRIPPER_KP, kv=40.0)
     act.ctrlrange = [0.0, 2 * grip.stroke]
     act.ctrllimited = True
     act.forcerange = [-grip.force, grip.force]

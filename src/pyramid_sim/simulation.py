@@ -92,7 +92,10 @@ class BuildSim:
         self.zone = shared_zone(
             plan.spawn, [b.target.pose for b in plan.bricks], brick.length / 2, 0.04
         )
-        self.spawner = Spawner(m, scene.n_bricks, plan.spawn, clear_radius=0.16)
+        self.spawner = Spawner(
+            m, scene.n_bricks, plan.spawn, clear_radius=0.16,
+            jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
+        )
         self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
         self._reset_arms()
         self.runners = {
@@ -204,6 +207,7 @@ class BuildSim:
         return picking and not self.spawner.brick_ready()
 
     def _on_step_done(self, arm: str, step_kind: StepKind) -> None:
+        self.last_progress = self.data.time
         task = self._task_of[arm]
         if step_kind is StepKind.GRIP:
             slot = self.spawner.current
@@ -224,6 +228,7 @@ class BuildSim:
     ) -> RawResult:
         """Build the plan; `observer` is called every `observe_dt` of sim time (for video)."""
         self.on_placed = on_placed
+        self.last_progress = 0.0
         self._task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         cfg = self.config
         m, d = self.model, self.data
@@ -293,8 +298,26 @@ class BuildSim:
             if d.time > cfg.max_sim_time:
                 failure = f"build did not finish within {cfg.max_sim_time:g} s of simulated time"
                 break
+            if d.time - self.last_progress > cfg.stall_time:
+                failure = self._stall_reason()
+                break
         wall = time.perf_counter() - start
         return self._result(failure, wall)
+
+    def _stall_reason(self) -> str:
+        """Why no arm has finished a move for `stall_time`: name what they wait for."""
+        moving = [a for a in c.ARMS if self.runners[a].busy and not self._held(a)]
+        cause = f"{' and '.join(moving)} arm not reaching its target" if moving else "arms idle"
+        for a in (a for a in c.ARMS if self.runners[a].busy and self._held(a)):
+            task = self._task_of[a]
+            if task is not None and task.action is Action.PICK and self.scheduler.may_enter(a):
+                cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
+            else:
+                cause = f"{a} arm waiting for the shared zone"
+        return (
+            f"stalled at t = {self.data.time:.1f} s: no arm finished a move for "
+            f"{self.config.stall_time:g} s; {cause}"
+        )
 
     def _needs_brick(self) -> bool:
         """A brick is needed while some pick is still to come."""

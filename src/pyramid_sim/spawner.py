@@ -11,9 +11,22 @@ from .poses import Pose
 
 
 class Spawner:
-    def __init__(self, model: mujoco.MjModel, n_bricks: int, spawn: Pose, clear_radius: float):
+    """Sets bricks on the spawn spot one at a time, each up to `jitter` off it in x and y (drawn
+    from `seed`), as an imprecise feeder would: the arms still pick at the nominal spot."""
+
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        n_bricks: int,
+        spawn: Pose,
+        clear_radius: float,
+        jitter: float = 0.0,
+        seed: int = 0,
+    ) -> None:
         self.spawn = spawn
         self.clear_radius = clear_radius
+        self.jitter = jitter
+        self.rng = np.random.default_rng(seed)
         self.qadr = [model.joint(c.brick_name(i) + "joint").qposadr[0] for i in range(n_bricks)]
         self.dadr = [model.joint(c.brick_name(i) + "joint").dofadr[0] for i in range(n_bricks)]
         self.body = [model.body(c.brick_name(i) + "brick").id for i in range(n_bricks)]
@@ -43,7 +56,8 @@ class Spawner:
         slot = self.next_slot
         q, v = self.qadr[slot], self.dadr[slot]
         yaw = self.spawn.yaw
-        data.qpos[q : q + 3] = self.spawn.position
+        offset = self.rng.uniform(-self.jitter, self.jitter, size=2) if self.jitter else (0.0, 0.0)
+        data.qpos[q : q + 3] = self.spawn.position + (offset[0], offset[1], 0.0)
         data.qpos[q + 3 : q + 7] = [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)]
         data.qvel[v : v + 6] = 0.0
         self.next_slot += 1

@@ -1,0 +1,36 @@
+"""The spawner: bricks land within the asked jitter of the spot, the same for the same seed."""
+
+import mujoco
+import numpy as np
+
+from pyramid_sim.config import SimConfig
+from pyramid_sim.plan import make_plan
+from pyramid_sim.scene import build_scene
+from pyramid_sim.spawner import Spawner
+
+
+def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
+    config = SimConfig()
+    plan = make_plan("pyramid", 3, config)
+    scene = build_scene(config, n)
+    data = mujoco.MjData(scene.model)
+    spawner = Spawner(scene.model, n, plan.spawn, clear_radius=0.16, jitter=jitter, seed=seed)
+    out = []
+    for _ in range(n):
+        slot = spawner.spawn_next(data)
+        q = spawner.qadr[slot]
+        out.append(data.qpos[q : q + 3].copy())
+    return np.array(out) - plan.spawn.position
+
+
+def test_jitter_stays_within_bounds_and_follows_the_seed():
+    offsets = _spawned_positions(0.002, seed=1)
+    assert np.all(np.abs(offsets[:, :2]) <= 0.002)
+    assert np.all(offsets[:, 2] == 0.0)
+    assert np.ptp(offsets[:, 0]) > 0.0005  # it does move them
+    np.testing.assert_array_equal(offsets, _spawned_positions(0.002, seed=1))
+    assert not np.array_equal(offsets, _spawned_positions(0.002, seed=2))
+
+
+def test_no_jitter_means_exactly_on_the_spot():
+    assert np.all(_spawned_positions(0.0, seed=5) == 0.0)
