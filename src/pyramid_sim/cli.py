@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import tempfile
+import os
 import sys
+import tempfile
 from dataclasses import replace
 from pathlib import Path
 from typing import NoReturn, Sequence
@@ -17,6 +18,7 @@ from typing import NoReturn, Sequence
 from .config import BrickConfig, GripperConfig, SimConfig, VideoConfig
 from .errors import ConfigError, PyramidSimError
 from .structures import MAX_LAYERS, STRUCTURES
+from .sweep_grid import PARAMETERS, SweepConfig, parse_axis
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -87,7 +89,33 @@ def make_parser() -> argparse.ArgumentParser:
     _add_video_args(build)
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     _add_structure_args(view)
+    _add_sweep_parser(sub)
     return parser
+
+
+def _add_sweep_parser(sub: argparse._SubParsersAction) -> None:
+    sweep = sub.add_parser(
+        "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and sweep.png"
+    )
+    spec = "start:stop:count or a,b,c"
+    sweep.add_argument("--friction", metavar="GRID", help=f"brick friction, {spec}")
+    sweep.add_argument("--brick-mass", metavar="GRID", help=f"brick mass (kg), {spec}")
+    sweep.add_argument("--grip-force", metavar="GRID", help=f"grip force (N), {spec}")
+    sweep.add_argument("--pad-friction", metavar="GRID", help=f"finger pad friction, {spec}")
+    sweep.add_argument("--structure", type=_structure, default="pyramid-even")
+    sweep.add_argument("--layers", type=_layers, default=4, help=f"1 to {MAX_LAYERS} (default 4)")
+    sweep.add_argument("--repeats", type=_whole("repeats"), default=1,
+                       help="runs a point, seeds 0, 1, ... of the spawn jitter (1 to 100)")
+    sweep.add_argument("--spawn-jitter", type=_number("spawn jitter"), default=2.0, metavar="MM",
+                       help="spawned bricks land up to MM off the spot, [0, 10] (default 2)")
+    sweep.add_argument("--workers", type=_whole("workers"), default=os.cpu_count() or 1,
+                       help="runs at once (default: the CPU count)")
+    sweep.add_argument("--timeout", type=_number("timeout"), default=900.0,
+                       help="seconds a run may take before it is stopped and failed (default 900)")
+    sweep.add_argument("--backend", choices=("process", "ray"), default="process")
+    sweep.add_argument("--ray-address", help="an existing Ray cluster (default: start one here)")
+    sweep.add_argument("--out", type=Path, default=Path("runs/sweep"), help="output folder")
+    sweep.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
 def _add_video_args(p: argparse.ArgumentParser) -> None:
@@ -215,7 +243,46 @@ def _cmd_view(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = {"plan": _cmd_plan, "build": _cmd_build, "view": _cmd_view}
+def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
+    """The sweep's grid and settings; ConfigError for a bad grid or option."""
+    axes = tuple(
+        parse_axis(name, getattr(args, name)) for name in PARAMETERS if getattr(args, name) is not None
+    )
+    return SweepConfig(
+        axes=axes, structure=args.structure, layers=args.layers, repeats=args.repeats,
+        spawn_jitter_mm=args.spawn_jitter, workers=args.workers, timeout=args.timeout,
+        backend=args.backend, ray_address=args.ray_address,
+    )
+
+
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    config = sweep_config_from_args(args)
+    check_writable_dir(args.out)
+    if config.backend == "ray":
+        from .sweep_runner import require_ray
+
+        require_ray()
+    from tqdm import tqdm
+
+    from .build import prepare
+    from .sweep import report, run_sweep
+
+    prepare(config.structure, config.layers, SimConfig())  # out of reach: one line, nothing run
+    runs = len(config.runs())
+    with tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar:
+        rows, ran = run_sweep(
+            config, args.out, on_row=lambda result: bar.update(1), on_skip=bar.update
+        )
+    print(report(rows, config, args.out))
+    ok = sum(r["success"] == "true" for r in rows)
+    print(
+        f"{ok}/{len(rows)} builds succeeded ({ran} run now, {runs - ran} already in the CSV) -> "
+        f"{args.out / 'sweep.csv'}, {args.out / 'sweep.png'}"
+    )
+    return 0 if len(rows) == runs else EXIT_FAILED
+
+
+COMMANDS = {"plan": _cmd_plan, "build": _cmd_build, "view": _cmd_view, "sweep": _cmd_sweep}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,55 @@
+"""A parameter sweep from grid to map: skip the runs already in `sweep.csv`, run the rest on the
+chosen backend, append each row as it lands, then draw `sweep.png` and print the summary."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+from .results import write_json_atomic
+from .sweep_grid import SweepConfig, value_text
+from .sweep_report import grid_rows, summary_table, write_heatmaps
+from .sweep_runner import RunResult, run_processes, run_ray
+from .sweep_store import SweepStore
+
+
+def run_file_name(result: RunResult) -> str:
+    spec = result.spec
+    params = "_".join(f"{n}={value_text(v)}" for n, v in spec.params)
+    return f"{spec.structure}-{spec.layers}_{params}_jitter={spec.spawn_jitter_mm:g}_seed={spec.seed}.json"
+
+
+def run_sweep(
+    config: SweepConfig,
+    out: Path,
+    on_row: Callable[[RunResult], None] | None = None,
+    on_skip: Callable[[int], object] | None = None,
+) -> tuple[list[dict[str, str]], int]:
+    """Run what is missing from `out/sweep.csv`; returns the grid's rows and how many ran now.
+    Each run's full result document goes to `out/runs/`; `on_skip` hears how many runs were
+    already in the CSV."""
+    store = SweepStore(out / "sweep.csv")
+    done = store.done()
+    todo = [spec for spec in config.runs() if spec.key() not in done]
+    if on_skip is not None:
+        on_skip(len(config.runs()) - len(todo))
+
+    def record(result: RunResult) -> None:
+        if result.document is not None:
+            write_json_atomic(out / "runs" / run_file_name(result), result.document)
+        store.append(result.row)
+        if on_row is not None:
+            on_row(result)
+
+    if todo:
+        if config.backend == "ray":
+            run_ray(todo, config.workers, config.timeout, record, config.ray_address)
+        else:
+            run_processes(todo, config.workers, config.timeout, record)
+    return grid_rows(store.rows, config), len(todo)
+
+
+def report(rows: list[dict[str, str]], config: SweepConfig, out: Path) -> str:
+    """Draw `out/sweep.png`; returns the summary table."""
+    write_heatmaps(rows, config, out / "sweep.png")
+    return summary_table(rows, config)

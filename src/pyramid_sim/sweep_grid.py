@@ -1,0 +1,185 @@
+"""A sweep's grid: which parameters vary, over which values, and one RunSpec per run.
+
+Pure (no MuJoCo): parsing `start:stop:count` or comma lists, checking every value through the
+configuration classes, and naming each run by the text of its parameters so a re-run can tell
+which runs are already in the CSV.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Callable
+
+from .config import SimConfig, check_range
+from .errors import ConfigError
+from .structures import MAX_LAYERS, STRUCTURES
+
+MAX_POINTS_PER_AXIS = 50
+MAX_RUNS = 10_000
+
+
+def _brick_friction(c: SimConfig, v: float) -> SimConfig:
+    return replace(c, brick=replace(c.brick, friction=v))
+
+
+def _brick_mass(c: SimConfig, v: float) -> SimConfig:
+    return replace(c, brick=replace(c.brick, mass=v))
+
+
+def _grip_force(c: SimConfig, v: float) -> SimConfig:
+    return replace(c, gripper=replace(c.gripper, force=v))
+
+
+def _pad_friction(c: SimConfig, v: float) -> SimConfig:
+    return replace(c, gripper=replace(c.gripper, pad_friction=v))
+
+
+# The sweepable parameters, in the order of the CSV columns and the plot's axes: the CSV name,
+# the label a person reads, how it is applied, and its default.
+PARAMETERS: dict[str, tuple[str, Callable[[SimConfig, float], SimConfig], float]] = {
+    "friction": ("brick friction", _brick_friction, SimConfig().brick.friction),
+    "brick_mass": ("brick mass (kg)", _brick_mass, SimConfig().brick.mass),
+    "grip_force": ("grip force (N)", _grip_force, SimConfig().gripper.force),
+    "pad_friction": ("pad friction", _pad_friction, SimConfig().gripper.pad_friction),
+}
+
+
+def value_text(value: float) -> str:
+    """The one spelling of a value: in the CSV, in run keys and on plot ticks."""
+    return repr(round(float(value), 9))
+
+
+@dataclass(frozen=True)
+class Axis:
+    name: str
+    values: tuple[float, ...]
+
+    @property
+    def label(self) -> str:
+        return PARAMETERS[self.name][0]
+
+
+def parse_axis(name: str, text: str) -> Axis:
+    """`start:stop:count` (evenly spaced, both ends included) or `a,b,c`; every value is checked
+    by the configuration class that owns it. ConfigError names the parameter and the range."""
+    label = PARAMETERS[name][0]
+    form = f"accepted start:stop:count (count 1 to {MAX_POINTS_PER_AXIS}) or a comma list"
+    text = text.strip()
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, count_text = float(parts[0]), float(parts[1]), parts[2]
+            count = int(count_text)
+            if not 1 <= count <= MAX_POINTS_PER_AXIS:
+                raise ConfigError(f"{label}: {count} points in {text!r}; {form}")
+            if count == 1 and start != stop:
+                raise ConfigError(f"{label}: one point cannot span {text!r}; {form}")
+            step = (stop - start) / (count - 1) if count > 1 else 0.0
+            values = tuple(start + i * step for i in range(count))
+        else:
+            values = tuple(float(v) for v in text.split(","))
+    except ValueError as err:
+        if isinstance(err, ConfigError):
+            raise
+        raise ConfigError(f"{label}: cannot read {text!r}; {form}") from None
+    if not values or len(values) > MAX_POINTS_PER_AXIS:
+        raise ConfigError(f"{label}: {len(values)} values in {text!r}; {form}")
+    values = tuple(round(v, 9) for v in values)
+    if len(set(values)) != len(values):
+        raise ConfigError(f"{label}: repeated values in {text!r}; {form}")
+    apply = PARAMETERS[name][1]
+    for v in values:
+        if not math.isfinite(v):
+            raise ConfigError(f"{label}: {v} is not a finite number; {form}")
+        apply(SimConfig(), v)  # the owning dataclass refuses an out-of-range value
+    return Axis(name, values)
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One build of the sweep: a grid point and a seed."""
+
+    structure: str
+    layers: int
+    params: tuple[tuple[str, float], ...]  # in PARAMETERS order
+    seed: int
+    spawn_jitter_mm: float
+
+    def config(self, base: SimConfig | None = None) -> SimConfig:
+        config = base or SimConfig()
+        for name, value in self.params:
+            config = PARAMETERS[name][1](config, value)
+        layout = replace(config.layout, spawn_jitter_mm=self.spawn_jitter_mm)
+        return replace(config, layout=layout, seed=self.seed)
+
+    def key(self) -> tuple[str, ...]:
+        """The run's identity as the CSV spells it (see sweep_store.KEY_COLUMNS)."""
+        return (
+            self.structure,
+            str(self.layers),
+            *(value_text(v) for _, v in self.params),
+            value_text(self.spawn_jitter_mm),
+            str(self.seed),
+        )
+
+
+@dataclass(frozen=True)
+class SweepConfig:
+    """A whole sweep: the grid, the build, the repeats and how the runs are executed."""
+
+    axes: tuple[Axis, ...] = field(default_factory=tuple)  # only the axes the user gave
+    structure: str = "pyramid-even"
+    layers: int = 4
+    repeats: int = 1
+    spawn_jitter_mm: float = 2.0
+    workers: int = 2
+    timeout: float = 900.0
+    backend: str = "process"
+    ray_address: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.structure not in STRUCTURES:
+            raise ConfigError(
+                f"structure: unknown {self.structure!r}; accepted {', '.join(sorted(STRUCTURES))}"
+            )
+        check_range("layers", self.layers, 1, MAX_LAYERS)
+        check_range("repeats", self.repeats, 1, 100)
+        check_range("workers", self.workers, 1, 256)
+        check_range("timeout (s)", self.timeout, 0.0, 86400.0, low_open=True)
+        replace(SimConfig().layout, spawn_jitter_mm=self.spawn_jitter_mm)  # range check
+        if self.backend not in ("process", "ray"):
+            raise ConfigError(f"backend: unknown {self.backend!r}; accepted process, ray")
+        if self.ray_address is not None and self.backend != "ray":
+            raise ConfigError("ray address: only with --backend ray")
+        names = [a.name for a in self.axes]
+        if len(set(names)) != len(names):
+            raise ConfigError(f"axes: a parameter is given twice ({', '.join(names)})")
+        if len(self.runs()) > MAX_RUNS:
+            raise ConfigError(f"grid: {len(self.runs())} runs; accepted at most {MAX_RUNS}")
+
+    def full_axes(self) -> tuple[Axis, ...]:
+        """All sweepable parameters in their fixed order, the ones not given at their default."""
+        given = {a.name: a for a in self.axes}
+        return tuple(given.get(n, Axis(n, (d,))) for n, (_, _, d) in PARAMETERS.items())
+
+    def plot_axes(self) -> tuple[Axis, Axis | None]:
+        """The two main axes of the map: the first two (in PARAMETERS order) with more than one
+        value; other varying axes are folded into each cell."""
+        full = self.full_axes()
+        varying = [a for a in full if len(a.values) > 1]
+        x = varying[0] if varying else full[0]
+        return x, (varying[1] if len(varying) > 1 else None)
+
+    def runs(self) -> list[RunSpec]:
+        """Every run: the grid's points in order, each `repeats` times with seeds 0, 1, ..."""
+        points: list[tuple[tuple[str, float], ...]] = [()]
+        for axis in self.full_axes():
+            points = [p + ((axis.name, v),) for p in points for v in axis.values]
+        return [
+            RunSpec(self.structure, self.layers, p, seed, self.spawn_jitter_mm)
+            for p in points
+            for seed in range(self.repeats)
+        ]

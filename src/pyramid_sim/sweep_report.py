@@ -1,0 +1,154 @@
+"""What a sweep found: per-point statistics, the summary table and the heatmaps (matplotlib).
+
+Reads only CSV rows (text), so a report can be redrawn from `sweep.csv` alone.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from .sweep_grid import Axis, SweepConfig, value_text
+from .sweep_store import row_key
+
+PLACE_TOLERANCE_MM = 5.0  # results.Tolerances.xy_mm: the error scale of the map
+SLIP_SCALE_MM = 5.0
+
+
+@dataclass(frozen=True)
+class CellStats:
+    runs: int
+    succeeded: int
+    worst_error_mm: float  # over the runs; inf when some brick never reached the structure
+    max_slip_mm: float  # nan when no brick was carried to its release
+
+    @property
+    def rate(self) -> float:
+        return self.succeeded / self.runs if self.runs else math.nan
+
+
+def _number(text: str) -> float:
+    return float(text) if text not in ("", None) else math.nan
+
+
+def _stats(rows: list[dict[str, str]]) -> CellStats:
+    errors = [_number(r["worst_error_xy_mm"]) for r in rows]
+    slips = [s for s in (_number(r["max_slip_mm"]) for r in rows) if not math.isnan(s)]
+    return CellStats(
+        runs=len(rows),
+        succeeded=sum(r["success"] == "true" for r in rows),
+        worst_error_mm=max((math.inf if math.isnan(e) else e) for e in errors) if errors else math.nan,
+        max_slip_mm=max(slips) if slips else math.nan,
+    )
+
+
+def grid_rows(rows: list[dict[str, str]], config: SweepConfig) -> list[dict[str, str]]:
+    """The rows of this sweep's grid (a folder may hold rows of other grids too)."""
+    keys = {spec.key() for spec in config.runs()}
+    return [r for r in rows if row_key(r) in keys]
+
+
+def cells(
+    rows: list[dict[str, str]], x: Axis, y: Axis | None
+) -> dict[tuple[str, str | None], CellStats]:
+    """Statistics per (x, y) cell, folding repeats and any other varying parameter."""
+    groups: dict[tuple[str, str | None], list[dict[str, str]]] = {}
+    for r in rows:
+        groups.setdefault((r[x.name], r[y.name] if y else None), []).append(r)
+    return {k: _stats(v) for k, v in groups.items()}
+
+
+def summary_table(rows: list[dict[str, str]], config: SweepConfig) -> str:
+    """One line per grid point: its parameters, successes over runs, worst error, max slip."""
+    varying = [a for a in config.full_axes() if len(a.values) > 1] or [config.full_axes()[0]]
+    groups: dict[tuple[str, ...], list[dict[str, str]]] = {}
+    for r in rows:
+        groups.setdefault(tuple(r[a.name] for a in varying), []).append(r)
+    header = [a.label for a in varying] + ["ok/runs", "worst xy mm", "max slip mm"]
+    lines = [header]
+    for spec_values in sorted(groups, key=lambda k: tuple(float(v) for v in k)):
+        s = _stats(groups[spec_values])
+        lines.append([*spec_values, f"{s.succeeded}/{s.runs}", _fmt(s.worst_error_mm), _fmt(s.max_slip_mm)])
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+    return "\n".join("  ".join(c.rjust(w) for c, w in zip(line, widths)) for line in lines)
+
+
+def _fmt(v: float) -> str:
+    if math.isnan(v):
+        return "-"
+    return "not placed" if math.isinf(v) else f"{v:.2f}"
+
+
+def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) -> None:
+    """Success rate, worst placement error and max slip over the two main axes, as a PNG
+    written atomically. Errors beyond the placing tolerance, and bricks never placed, show in
+    the colour map's 'over' colour so the envelope's edge stands out."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib import patheffects
+
+    x, y = config.plot_axes()
+    stats = cells(rows, x, y)
+    xs = [value_text(v) for v in x.values]
+    ys = [value_text(v) for v in y.values] if y else [None]
+    panels = [
+        ("success rate", lambda s: s.rate, "RdYlGn", 0.0, 1.0,
+         lambda s: f"{s.succeeded}/{s.runs}"),
+        ("worst placement error (mm)", lambda s: s.worst_error_mm, "viridis", 0.0,
+         PLACE_TOLERANCE_MM, lambda s: _fmt(s.worst_error_mm)),
+        ("max slip in the hand (mm)", lambda s: s.max_slip_mm, "viridis", 0.0, SLIP_SCALE_MM,
+         lambda s: _fmt(s.max_slip_mm)),
+    ]
+    fig, axes = plt.subplots(
+        1, 3, figsize=(4.2 * 3 + 1, 1.2 + 0.65 * len(ys) + 1.6), constrained_layout=True
+    )
+    for ax, (title, value, cmap_name, vmin, vmax, label) in zip(axes, panels):
+        grid = np.full((len(ys), len(xs)), np.nan)
+        for i, yv in enumerate(ys):
+            for j, xv in enumerate(xs):
+                if (xv, yv) in stats:
+                    grid[i, j] = value(stats[(xv, yv)])
+        cmap = matplotlib.colormaps[cmap_name].with_extremes(over="#d7301f", bad="#bdbdbd")
+        shown = np.where(np.isinf(grid), vmax * 10, grid)
+        image = ax.imshow(np.ma.masked_invalid(shown), origin="lower", cmap=cmap, vmin=vmin,
+                          vmax=vmax, aspect="auto")
+        for i, yv in enumerate(ys):
+            for j, xv in enumerate(xs):
+                text = label(stats[(xv, yv)]) if (xv, yv) in stats else "not run"
+                ax.text(j, i, text, ha="center", va="center", fontsize=8, color="white",
+                        path_effects=[patheffects.withStroke(linewidth=2, foreground="black")])
+        ax.set_xticks(range(len(xs)), xs)
+        ax.set_xlabel(x.label)
+        ax.set_yticks(range(len(ys)), ys if y else [""])
+        ax.set_ylabel(y.label if y else "")
+        ax.set_title(title)
+        fig.colorbar(image, ax=ax, extend="neither" if title == "success rate" else "max")
+    fixed = ", ".join(
+        f"{a.label} {value_text(a.values[0])}" for a in config.full_axes() if len(a.values) == 1
+        and a.name not in (x.name, y.name if y else None)
+    )
+    folded = [a.label for a in config.full_axes() if len(a.values) > 1 and a not in (x, y)]
+    fig.suptitle(
+        f"{config.structure} {config.layers} layers, {config.repeats} run(s) a point, spawn "
+        f"jitter {config.spawn_jitter_mm:g} mm; {fixed}"
+        + (f"; cells fold {', '.join(folded)}" if folded else "")
+    )
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, format="png", dpi=110)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    finally:
+        plt.close(fig)
+

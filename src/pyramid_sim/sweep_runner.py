@@ -1,0 +1,243 @@
+"""Run a sweep's builds in parallel: a pool of worker processes, or Ray tasks.
+
+Both backends run the same function, `run_one`, and hand each finished run to one callback in
+the calling process (which writes the CSV), so they give the same rows. A run that raises,
+kills its worker, or passes the timeout becomes a failed row with its reason; the sweep goes on.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import multiprocessing.connection
+import signal
+import sys
+import time
+from collections import deque
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable
+
+from .errors import ConfigError
+from .sweep_grid import RunSpec
+from .sweep_store import KEY_COLUMNS
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """A finished run: its CSV row and, when the build ran to its end, its result document."""
+
+    spec: RunSpec
+    row: dict[str, Any]
+    document: dict[str, Any] | None = None
+
+
+OnResult = Callable[[RunResult], None]
+
+
+def _row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> dict[str, Any]:
+    row: dict[str, Any] = dict(zip(KEY_COLUMNS, spec.key()))
+    row.update(
+        success=False, bricks_placed=None, bricks_total=None, drops=None, max_slip_mm=None,
+        worst_error_xy_mm=None, sim_time_s=None,
+    )
+    row.update(results)
+    row["wall_time_s"] = round(wall, 3)
+    row["failure_reason"] = " ".join(reason.split()) if reason else None  # one line in the CSV
+    return row
+
+
+def failed(spec: RunSpec, reason: str, wall: float) -> RunResult:
+    return RunResult(spec, _row(spec, wall, reason))
+
+
+def run_one(spec: RunSpec) -> RunResult:
+    """One full headless build of a grid point (in a worker). Never raises for a run's own
+    failure: an exception becomes a failed row naming it."""
+    start = time.perf_counter()
+    try:
+        from .build import run_build
+        from .plan import make_plan
+
+        config = spec.config()
+        document = run_build(make_plan(spec.structure, spec.layers, config), config)
+    except Exception as err:  # the sweep goes on; the row says what happened
+        return failed(spec, f"crashed: {type(err).__name__}: {err}", time.perf_counter() - start)
+    row = _row(
+        spec,
+        time.perf_counter() - start,
+        document["failure_reason"],
+        success=document["success"],
+        bricks_placed=document["bricks_placed"],
+        bricks_total=document["bricks_total"],
+        drops=document["drops"],
+        max_slip_mm=document["max_slip_mm"],
+        worst_error_xy_mm=document["worst_error_xy_mm"],
+        sim_time_s=document["sim_time_s"],
+    )
+    return RunResult(spec, row, document)
+
+
+# --- process backend ---------------------------------------------------------------------------
+
+def _die_with_parent() -> None:
+    """A worker of a sweep that was killed stops too, instead of finishing its build unseen."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        try:
+            ctypes.CDLL("libc.so.6").prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+
+
+def _worker_loop(conn: mp.connection.Connection, run: Callable[[RunSpec], RunResult]) -> None:
+    _die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when a sweep stops
+    while True:
+        try:
+            spec = conn.recv()
+        except EOFError:
+            return
+        if spec is None:
+            return
+        conn.send(run(spec))
+
+
+class _Worker:
+    def __init__(self, ctx: Any, run: Callable[[RunSpec], RunResult]) -> None:
+        self.conn, child = ctx.Pipe()
+        self.proc = ctx.Process(target=_worker_loop, args=(child, run), daemon=True)
+        self.proc.start()
+        child.close()
+        self.spec: RunSpec | None = None
+        self.started = 0.0
+
+    def assign(self, spec: RunSpec) -> None:
+        self.spec, self.started = spec, time.monotonic()
+        self.conn.send(spec)
+
+    def stop(self) -> None:
+        if self.proc.is_alive():
+            self.proc.kill()
+        self.proc.join()
+        self.conn.close()
+
+
+def run_processes(
+    specs: Iterable[RunSpec],
+    workers: int,
+    timeout: float,
+    on_result: OnResult,
+    run: Callable[[RunSpec], RunResult] = run_one,
+) -> None:
+    """Run every spec in a pool of `workers` processes (fresh interpreters, one model each at a
+    time); a worker that dies or passes `timeout` seconds on a run is replaced."""
+    ctx = mp.get_context("spawn")
+    pending = deque(specs)
+    idle: list[_Worker] = []
+    busy: list[_Worker] = []
+    try:
+        while pending or busy:
+            while pending and len(busy) < workers:
+                worker = idle.pop() if idle else _Worker(ctx, run)
+                worker.assign(pending.popleft())
+                busy.append(worker)
+            wait = min(w.started + timeout for w in busy) - time.monotonic()
+            waitables = [w.conn for w in busy] + [w.proc.sentinel for w in busy]
+            mp.connection.wait(waitables, timeout=max(0.0, wait))
+            for worker in list(busy):
+                spec = worker.spec
+                assert spec is not None
+                result = _collect(worker, timeout)
+                if result is None:
+                    continue
+                busy.remove(worker)
+                if worker.proc.is_alive():
+                    idle.append(worker)
+                else:  # crashed or timed out: replaced by a fresh process
+                    worker.stop()
+                on_result(result)
+    finally:
+        for worker in idle + busy:
+            worker.stop()
+
+
+def _collect(worker: _Worker, timeout: float) -> RunResult | None:
+    """The worker's finished run, a failed row if it died or ran out of time, else None."""
+    spec = worker.spec
+    assert spec is not None
+    elapsed = time.monotonic() - worker.started
+    if worker.conn.poll():
+        try:
+            result: RunResult = worker.conn.recv()
+            return result
+        except (EOFError, OSError):
+            pass
+    if not worker.proc.is_alive():
+        worker.proc.join()
+        code = worker.proc.exitcode
+        how = f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+        return failed(spec, f"crashed: the worker process ended ({how})", elapsed)
+    if elapsed > timeout:
+        worker.proc.kill()
+        worker.proc.join()
+        return failed(spec, f"timeout: still running after {timeout:g} s", elapsed)
+    return None
+
+
+# --- Ray backend -------------------------------------------------------------------------------
+
+def require_ray() -> None:
+    """ConfigError, before anything runs, when the ray extra is not installed."""
+    import importlib.util
+
+    if importlib.util.find_spec("ray") is None:
+        raise ConfigError("backend: ray is not installed; accepted process, or ray after "
+                          "pip install -e '.[ray]'")
+
+
+def run_ray(
+    specs: Iterable[RunSpec],
+    workers: int,
+    timeout: float,
+    on_result: OnResult,
+    address: str | None = None,
+) -> None:
+    """Run every spec as a Ray task, at most `workers` at once, on a local Ray instance (started
+    with `workers` CPUs) or the cluster at `address`; the nodes need pyramid_sim installed."""
+    import logging
+
+    import ray
+
+    started_here = not ray.is_initialized()
+    if started_here:
+        ray.init(
+            address=address, num_cpus=None if address else workers, include_dashboard=False,
+            log_to_driver=False, logging_level=logging.ERROR,
+        )
+    task = ray.remote(num_cpus=1, max_retries=0)(run_one)
+    pending = deque(specs)
+    running: dict[Any, tuple[RunSpec, float]] = {}
+    try:
+        while pending or running:
+            while pending and len(running) < workers:
+                spec = pending.popleft()
+                running[task.remote(spec)] = (spec, time.monotonic())
+            wait = min(start + timeout for _, start in running.values()) - time.monotonic()
+            ready, _ = ray.wait(list(running), num_returns=1, timeout=max(0.0, wait))
+            for ref in ready:
+                spec, start = running.pop(ref)
+                try:
+                    on_result(ray.get(ref))
+                except ray.exceptions.RayError as err:
+                    reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
+                    on_result(failed(spec, reason, time.monotonic() - start))
+            for ref, (spec, start) in list(running.items()):
+                if time.monotonic() - start > timeout:
+                    ray.cancel(ref, force=True)
+                    del running[ref]
+                    on_result(failed(spec, f"timeout: still running after {timeout:g} s", timeout))
+    finally:
+        for ref in running:
+            ray.cancel(ref, force=True)
+        if started_here:
+            ray.shutdown()

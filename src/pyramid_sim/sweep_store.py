@@ -1,0 +1,105 @@
+"""`sweep.csv`: one row per finished run, appended as each finishes, safe to resume.
+
+A row is written with one `write` on a file opened for appending and then flushed to disk, so a
+sweep killed at any moment leaves whole rows and at most one torn last line, which the next
+run cuts off before it appends. The key columns name a run; a run whose key is already in the
+file is not run again.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+from pathlib import Path
+from typing import Any
+
+from .errors import ConfigError
+from .sweep_grid import PARAMETERS
+
+KEY_COLUMNS = ("structure", "layers", *PARAMETERS, "spawn_jitter_mm", "seed")
+RESULT_COLUMNS = (
+    "success",
+    "bricks_placed",
+    "bricks_total",
+    "drops",
+    "max_slip_mm",
+    "worst_error_xy_mm",
+    "sim_time_s",
+    "wall_time_s",
+    "failure_reason",
+)
+COLUMNS = KEY_COLUMNS + RESULT_COLUMNS
+
+
+def row_key(row: dict[str, str]) -> tuple[str, ...]:
+    return tuple(row[c] for c in KEY_COLUMNS)
+
+
+class SweepStore:
+    """The CSV of one sweep folder: the rows so far, and appending new ones."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self._rows: list[dict[str, str]] = []
+        if path.exists():
+            self._repair_and_load()
+        else:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            self._append_text(_line(COLUMNS))
+
+    def _repair_and_load(self) -> None:
+        raw = self.path.read_bytes()
+        if raw and not raw.endswith(b"\n"):  # killed mid-write: drop the torn line
+            raw = raw[: raw.rfind(b"\n") + 1]
+            with open(self.path, "r+b") as f:
+                f.truncate(len(raw))
+        if not raw:
+            self._append_text(_line(COLUMNS))
+            return
+        reader = csv.DictReader(io.StringIO(raw.decode()))
+        if tuple(reader.fieldnames or ()) != COLUMNS:
+            raise ConfigError(
+                f"out: {str(self.path)!r} has other columns than this version writes; "
+                "accepted a new folder or one written by the same version"
+            )
+        seen: set[tuple[str, ...]] = set()
+        for row in reader:
+            if row_key(row) not in seen:  # a duplicate could only come from a hand edit
+                seen.add(row_key(row))
+                self._rows.append(row)
+
+    def _append_text(self, text: str) -> None:
+        fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        try:
+            os.write(fd, text.encode())
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+    @property
+    def rows(self) -> list[dict[str, str]]:
+        return list(self._rows)
+
+    def done(self) -> set[tuple[str, ...]]:
+        return {row_key(r) for r in self._rows}
+
+    def append(self, row: dict[str, Any]) -> None:
+        """Write one finished run (its values spelled as the row has them)."""
+        text_row = {c: _cell(row[c]) for c in COLUMNS}
+        self._append_text(_line([text_row[c] for c in COLUMNS]))
+        self._rows.append(text_row)
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+def _line(cells: Any) -> str:
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerow(list(cells))
+    return buffer.getvalue()

@@ -1,0 +1,193 @@
+"""Sweeps: grids, the resumable CSV, the worker pool's failure rows, the map, and both backends."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from pyramid_sim.cli import main
+from pyramid_sim.errors import ConfigError
+from pyramid_sim.sweep_grid import SweepConfig, parse_axis
+from pyramid_sim.sweep_report import summary_table, write_heatmaps
+from pyramid_sim.sweep_runner import RunResult, _row, run_processes
+from pyramid_sim.sweep_store import COLUMNS, SweepStore
+
+
+def test_range_and_list_grids():
+    assert parse_axis("friction", "0.3:1.5:5").values == (0.3, 0.6, 0.9, 1.2, 1.5)
+    assert parse_axis("brick_mass", "0.5, 1,2").values == (0.5, 1.0, 2.0)
+    assert parse_axis("grip_force", "20:20:1").values == (20.0,)
+
+
+@pytest.mark.parametrize(
+    "name, text, words",
+    [
+        ("friction", "0.3:1.5:0", "0 points"),
+        ("friction", "0.3:1.5", "cannot read"),
+        ("brick_mass", "-0.5,1", "brick mass"),
+        ("brick_mass", "abc", "cannot read"),
+        ("grip_force", "nan", "grip force"),
+        ("pad_friction", "1,1", "repeated"),
+        ("friction", "0.3:1.5:51", "51 points"),
+    ],
+)
+def test_bad_grids_are_refused_naming_the_parameter(name, text, words):
+    with pytest.raises(ConfigError, match=words):
+        parse_axis(name, text)
+
+
+def test_the_grid_holds_every_point_and_repeat_once():
+    config = SweepConfig(
+        axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.2:1.0:3")), repeats=2
+    )
+    runs = config.runs()
+    assert len(runs) == 2 * 3 * 2
+    assert len({r.key() for r in runs}) == len(runs)
+    assert {r.seed for r in runs} == {0, 1}
+    x, y = config.plot_axes()
+    assert (x.name, y.name) == ("friction", "brick_mass")
+    assert runs[0].config().brick.friction == 0.5 and runs[-1].config().brick.mass == 1.0
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--friction", "0.3:1.5:0"], "friction"),
+        (["--brick-mass=-0.2,1"], "brick mass"),
+        (["--stiffness", "1,2"], "unrecognized"),
+        (["--workers", "0"], "workers"),
+        (["--timeout", "0"], "timeout"),
+        (["--repeats", "1000"], "repeats"),
+        (["--ray-address", "auto"], "ray address"),
+        (["--spawn-jitter", "-1"], "spawn jitter"),
+    ],
+)
+def test_bad_sweep_options_are_one_line_and_exit_2(tmp_path, capsys, args, words):
+    out = tmp_path / "sweep"
+    try:
+        code = main(["sweep", *args, "--out", str(out)])
+    except SystemExit as exit_info:  # argparse's own refusals
+        code = exit_info.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not out.exists()
+
+
+def _spec_rows(config: SweepConfig) -> list[dict]:
+    return [_row(spec, 1.0, None, success=True, bricks_placed=1) for spec in config.runs()]
+
+
+def test_the_csv_survives_a_torn_last_line_and_keeps_one_row_per_run(tmp_path):
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1,1.5"),))
+    rows = _spec_rows(config)
+    store = SweepStore(tmp_path / "sweep.csv")
+    store.append(rows[0])
+    store.append(rows[1])
+    with open(tmp_path / "sweep.csv", "a") as f:
+        f.write("pyramid-even,4,1.5,0.5,20")  # killed in the middle of a row
+    again = SweepStore(tmp_path / "sweep.csv")
+    assert len(again.rows) == 2
+    again.append(rows[2])
+    with open(tmp_path / "sweep.csv") as f:
+        table = list(csv.DictReader(f))
+    assert [r["friction"] for r in table] == ["0.5", "1.0", "1.5"]
+    assert tuple(table[0]) == COLUMNS
+
+
+# Stand-ins for a build, run in spawned workers: seed 0 finishes, 1 kills its process, 2 hangs.
+def _fake_run(spec):
+    if spec.seed == 1:
+        os._exit(3)
+    if spec.seed == 2:
+        time.sleep(60)
+    return RunResult(spec, _row(spec, 0.0, None, success=True))
+
+
+def test_the_pool_turns_crashes_and_timeouts_into_failed_rows_and_goes_on():
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), repeats=3)
+    results: list[RunResult] = []
+    start = time.monotonic()
+    run_processes(config.runs(), workers=2, timeout=3.0, on_result=results.append, run=_fake_run)
+    assert time.monotonic() - start < 40
+    assert sorted(r.spec.key() for r in results) == sorted(s.key() for s in config.runs())
+    by_seed = {}
+    for r in results:
+        by_seed.setdefault(r.spec.seed, []).append(r.row)
+    assert all(row["success"] and row["failure_reason"] is None for row in by_seed[0])
+    assert all("crashed" in row["failure_reason"] and "exit status 3" in row["failure_reason"]
+               for row in by_seed[1])
+    assert all("timeout" in row["failure_reason"] for row in by_seed[2])
+
+
+def test_the_map_and_summary_show_success_and_the_envelope_edge(tmp_path):
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.5,3")))
+    rows = []
+    for spec in config.runs():
+        heavy = spec.config().brick.mass > 1
+        rows.append({k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
+                     for k, v in _row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
+                                      worst_error_xy_mm=math.inf if heavy else 1.5,
+                                      max_slip_mm=40.0 if heavy else 0.8).items()})
+    table = summary_table(rows, config)
+    assert table.count("1/1") == 2 and table.count("0/1") == 2 and "not placed" in table
+    write_heatmaps(rows, config, tmp_path / "sweep.png")
+    assert (tmp_path / "sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _sweep_cmd(out: Path, *extra: str) -> list[str]:
+    return [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--structure", "pyramid",
+            "--layers", "1", "--out", str(out), "--quiet", *extra]
+
+
+def _csv_rows(path: Path) -> list[dict]:
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.mark.physics
+def test_a_killed_sweep_resumes_to_exactly_one_row_per_run(tmp_path):
+    out = tmp_path / "s"
+    cmd = _sweep_cmd(out, "--brick-mass", "0.4,0.5,0.6,0.7", "--workers", "1")
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        if (out / "sweep.csv").exists() and len(_csv_rows(out / "sweep.csv")) >= 1:
+            break
+        time.sleep(0.2)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    first = _csv_rows(out / "sweep.csv")
+    assert 1 <= len(first) < 4, "the kill should land half way"
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    rows = _csv_rows(out / "sweep.csv")
+    assert sorted(r["brick_mass"] for r in rows) == ["0.4", "0.5", "0.6", "0.7"]
+    assert rows[: len(first)] == first  # nothing lost or rewritten
+    assert all(r["success"] == "true" for r in rows)
+    assert (out / "sweep.png").exists()
+
+
+@pytest.mark.physics
+def test_ray_gives_the_same_rows_as_processes(tmp_path):
+    grid = ["--grip-force", "1,20", "--workers", "2"]
+    for backend in ("process", "ray"):
+        done = subprocess.run(_sweep_cmd(tmp_path / backend, *grid, "--backend", backend),
+                              capture_output=True, text=True, timeout=600)
+        assert done.returncode == 0, done.stderr
+    rows = {}
+    for backend in ("process", "ray"):
+        table = _csv_rows(tmp_path / backend / "sweep.csv")
+        rows[backend] = sorted(({k: v for k, v in r.items() if k != "wall_time_s"} for r in table),
+                               key=lambda r: float(r["grip_force"]))
+    assert len(rows["ray"]) == 2
+    assert rows["ray"] == rows["process"]
+    assert [r["success"] for r in rows["ray"]] == ["false", "true"]  # outcomes differ: 1 N drops
