@@ -2,6 +2,7 @@ import pytest
 
 from pyramid_sim.build import prepare, run_build
 from pyramid_sim.config import SimConfig
+from pyramid_sim.structures import StructureSpec
 
 _BUILDS: dict = {}
 
@@ -11,7 +12,7 @@ def build_once(structure: str, layers: int) -> dict:
     key = (structure, layers)
     if key not in _BUILDS:
         config = SimConfig()
-        _BUILDS[key] = run_build(prepare(structure, layers, config), config)
+        _BUILDS[key] = run_build(prepare(StructureSpec(structure, layers=layers), config), config)
     return _BUILDS[key]
 
 

@@ -1,11 +1,15 @@
 """Physics: two Pandas build the seed's pyramids; every final brick pose is checked."""
 
+import math
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from pyramid_sim.build import prepare
 from pyramid_sim.config import SimConfig
 from pyramid_sim.simulation import BuildSim
+from pyramid_sim.structures import StructureSpec
 
 pytestmark = pytest.mark.physics
 
@@ -46,7 +50,7 @@ def test_build_is_clean(built, structure, layers, count):
 
 def test_same_settings_give_identical_final_poses():
     config = SimConfig()
-    plan = prepare("pyramid", 2, config)
+    plan = prepare(StructureSpec("pyramid", layers=2), config)
     first = BuildSim(plan, config).run()
     second = BuildSim(plan, config).run()
     assert first.failure is None
@@ -63,7 +67,7 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
 
     base = SimConfig()
     config = replace(base, gripper=replace(base.gripper, force=1.0), max_sim_time=60.0)
-    result = run_build(prepare("pyramid", 1, config), config)
+    result = run_build(prepare(StructureSpec("pyramid", layers=1), config), config)
     assert not result["success"]
     assert result["bricks_placed"] == 0
 
@@ -77,7 +81,7 @@ def test_a_brick_left_on_the_spawn_spot_stalls_the_build_with_its_reason():
 
     base = SimConfig()
     config = replace(base, gripper=replace(base.gripper, force=1.0), stall_time=15.0)
-    result = run_build(prepare("pyramid", 2, config), config)
+    result = run_build(prepare(StructureSpec("pyramid", layers=2), config), config)
     assert not result["success"]
     assert "stalled" in result["failure_reason"] and "spawn spot" in result["failure_reason"]
     assert result["sim_time_s"] < 60.0
@@ -92,8 +96,44 @@ def test_bricks_spawned_off_the_spot_are_still_built():
 
     base = SimConfig()
     config = replace(base, layout=replace(base.layout, spawn_jitter_mm=2.0), seed=1)
-    result = run_build(prepare("pyramid-even", 4, config), config)
+    result = run_build(prepare(StructureSpec("pyramid-even", layers=4), config), config)
     assert result["success"], result["failure_reason"]
     assert result["bricks_placed"] == 20
     assert result["worst_error_xy_mm"] < 5.0
     assert result["max_slip_mm"] < 2.0
+
+
+SEED_FIVE = Path(__file__).resolve().parents[1] / "assets" / "goals" / "seed_five.json"
+
+
+def _brick_manager_spec(name: str) -> StructureSpec:
+    if name == "list":
+        from pyramid_sim.goals import load_goals
+
+        config = SimConfig()
+        goals = load_goals(SEED_FIVE, config.brick, config.layout.table_top_z + config.brick.height / 2)
+        return StructureSpec("list", goals=goals, goals_source=SEED_FIVE.name)
+    return StructureSpec(name)
+
+
+@pytest.mark.parametrize(
+    "name, arms",
+    [("wall-pyramid", "both"), ("towers", "both"), ("list", "both"), ("list", "left")],
+)
+def test_brick_manager_structures_rest_on_their_targets(name, arms):
+    """The Brick Manager's structures at their default sizes (the seed's five goals for the
+    list), every final pose within the pyramid tests' tolerances."""
+    from pyramid_sim.build import run_build
+
+    config = SimConfig()
+    plan = prepare(_brick_manager_spec(name), config, arms)
+    result = run_build(plan, config)
+    assert result["success"], result["failure_reason"]
+    assert result["bricks_placed"] == len(plan.bricks)
+    for b in result["bricks"]:
+        x, y, z = b["final"]["position"]
+        tx, ty, tz = b["target"]["position"]
+        assert math.hypot(x - tx, y - ty) < 0.005 and abs(z - tz) < 0.003, b
+        assert b["yaw_error_deg"] < 3.0 and b["tilt_deg"] < 2.0, b
+    assert result["max_joint_speed_ratio"] <= 1.0
+    assert {b["arm"] for b in result["bricks"]} == ({"left", "right"} if arms == "both" else {arms})

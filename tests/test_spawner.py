@@ -7,11 +7,12 @@ from pyramid_sim.config import SimConfig
 from pyramid_sim.plan import make_plan
 from pyramid_sim.scene import build_scene
 from pyramid_sim.spawner import Spawner
+from pyramid_sim.structures import StructureSpec
 
 
 def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
     config = SimConfig()
-    plan = make_plan("pyramid", 3, config)
+    plan = make_plan(StructureSpec("pyramid", layers=3), config)
     scene = build_scene(config, n)
     data = mujoco.MjData(scene.model)
     spawner = Spawner(scene.model, n, plan.spawn, clear_radius=0.16, jitter=jitter, seed=seed)

@@ -8,11 +8,15 @@ from .poses import Pose
 from .scheduler import Action, LockstepScheduler, Task
 from .structures import (
     BrickTarget,
+    StructureSpec,
     create_coordinates,
     create_coordinates_new,
     make_structure,
     pyramid,
     pyramid_even,
+    towers,
+    wall,
+    wall_pyramid,
 )
 
 __all__ = [
@@ -36,6 +40,10 @@ __all__ = [
     "create_coordinates",
     "create_coordinates_new",
     "make_plan",
+    "StructureSpec",
+    "towers",
+    "wall",
+    "wall_pyramid",
     "make_structure",
     "pyramid",
     "pyramid_even",

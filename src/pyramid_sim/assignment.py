@@ -34,3 +34,10 @@ def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
             remaining.remove(chosen)
             order.append(Assignment(len(order), arm, chosen))
     return tuple(order)
+
+
+def single_arm(targets: Sequence[BrickTarget], arm: str) -> tuple[Assignment, ...]:
+    """Every brick to one arm, in the structure's own order, lowest course first (a goal list's
+    order is kept within each course: the generators and a sensible list are bottom-up)."""
+    ordered = sorted(targets, key=lambda t: t.layer)  # stable: keeps the order within a course
+    return tuple(Assignment(i, arm, t) for i, t in enumerate(ordered))

@@ -10,11 +10,12 @@ from .plan import Plan, make_plan
 from .reach import require_reachable
 from .results import result_document
 from .simulation import BuildSim, Observer
+from .structures import StructureSpec
 
 
-def prepare(structure: str, layers: int, config: SimConfig) -> Plan:
+def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
     """The plan, with every pose checked by IK: raises ConfigError before any physics."""
-    plan = make_plan(structure, layers, config)
+    plan = make_plan(spec, config, arms)
     require_reachable(plan, config)
     return plan
 

@@ -17,7 +17,8 @@ from typing import NoReturn, Sequence
 
 from .config import BrickConfig, GripperConfig, SimConfig, VideoConfig
 from .errors import ConfigError, PyramidSimError
-from .structures import MAX_LAYERS, STRUCTURES
+from .plan import ARM_CHOICES
+from .structures import MAX_BRICKS, MAX_COURSE, MAX_LAYERS, STRUCTURES, StructureSpec
 from .sweep_grid import PARAMETERS, SweepConfig, parse_axis
 
 EXIT_FAILED = 1
@@ -40,30 +41,52 @@ def _number(name: str):
     return parse
 
 
-def _layers(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"layers: {text!r} is not a whole number; accepted 1 to {MAX_LAYERS}"
-        ) from None
-    if not 1 <= value <= MAX_LAYERS:
-        raise argparse.ArgumentTypeError(f"layers: {value} is out of range; accepted 1 to {MAX_LAYERS}")
-    return value
+def _size(name: str, top: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{name}: {text!r} is not a whole number; accepted 1 to {top}"
+            ) from None
+        if not 1 <= value <= top:
+            raise argparse.ArgumentTypeError(f"{name}: {value} is out of range; accepted 1 to {top}")
+        return value
+
+    return parse
 
 
-def _structure(text: str) -> str:
-    if text not in STRUCTURES:
-        raise argparse.ArgumentTypeError(
-            f"structure: unknown {text!r}; accepted {', '.join(sorted(STRUCTURES))}"
-        )
-    return text
+def _one_of(name: str, options: Sequence[str]):
+    def parse(text: str) -> str:
+        if text not in options:
+            raise argparse.ArgumentTypeError(
+                f"{name}: unknown {text!r}; accepted {', '.join(options)}"
+            )
+        return text
+
+    return parse
 
 
 def _add_structure_args(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--structure", type=_structure, default="pyramid-even",
-                   help="pyramid (n, n-1, ..., 1) or pyramid-even (2n, 2n-2, ..., 2)")
-    p.add_argument("--layers", type=_layers, default=4, help=f"1 to {MAX_LAYERS} (default 4)")
+    names = sorted(STRUCTURES)
+    p.add_argument("--structure", type=_one_of("structure", names), default="pyramid-even",
+                   metavar="NAME", help=f"{', '.join(names)} (default pyramid-even)")
+    p.add_argument("--layers", type=_size("layers", MAX_LAYERS), metavar="N",
+                   help="pyramid, pyramid-even (default 4), wall-pyramid (3), towers (3)")
+    p.add_argument("--bricks", type=_size("bricks", MAX_BRICKS), metavar="N",
+                   help="wall: bricks in all (default 15)")
+    # Not --width: that is the video's width in `build` (issue 3's interface, kept).
+    p.add_argument("--wall-width", dest="wall_width", type=_size("wall width", MAX_COURSE),
+                   metavar="N", help="wall, wall-pyramid: bricks a course (default 5)")
+    p.add_argument("--towers", type=_size("towers", MAX_COURSE), metavar="N",
+                   help="towers: how many (default 4)")
+    p.add_argument("--goals", type=Path, metavar="FILE",
+                   help="list: place goals, JSON or CSV of x, y, z, yaw (assets/goals/)")
+    p.add_argument("--arms", type=_one_of("arms", ARM_CHOICES), default="both",
+                   help="both (the seed's lockstep) or one arm building alone")
+
+
+def _add_physics_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--friction", type=_number("friction"), default=BrickConfig.friction,
                    help="brick friction coefficient (0, 5]")
     p.add_argument("--brick-mass", type=_number("brick mass"), default=BrickConfig.mass,
@@ -77,19 +100,39 @@ def _add_structure_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=_whole("seed"), default=0, help="of the spawn jitter")
 
 
+def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec:
+    """The structure and its size; ConfigError for a bad size, option or goals file."""
+    goals = None
+    if args.goals is not None:
+        from .goals import load_goals
+
+        table_z = config.layout.table_top_z + config.brick.height / 2
+        goals = load_goals(args.goals, config.brick, table_z)
+    return StructureSpec(
+        args.structure, layers=args.layers, bricks=args.bricks, width=args.wall_width,
+        towers=args.towers, goals=goals, goals_source=args.goals.name if args.goals else "",
+    )
+
+
 def make_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="pyramid-sim", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     plan = sub.add_parser("plan", help="print the build plan as JSON, without simulating")
     _add_structure_args(plan)
+    _add_physics_args(plan)
     build = sub.add_parser("build", help="simulate the build headless and write DIR/result.json")
     _add_structure_args(build)
+    _add_physics_args(build)
     build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
     _add_video_args(build)
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     _add_structure_args(view)
+    _add_physics_args(view)
     _add_sweep_parser(sub)
+    reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
+    reach.add_argument("--arms", type=_one_of("arms", (*ARM_CHOICES, "all")), default="all",
+                       help="which arm set to check (default all three)")
     return parser
 
 
@@ -102,8 +145,7 @@ def _add_sweep_parser(sub: argparse._SubParsersAction) -> None:
     sweep.add_argument("--brick-mass", metavar="GRID", help=f"brick mass (kg), {spec}")
     sweep.add_argument("--grip-force", metavar="GRID", help=f"grip force (N), {spec}")
     sweep.add_argument("--pad-friction", metavar="GRID", help=f"finger pad friction, {spec}")
-    sweep.add_argument("--structure", type=_structure, default="pyramid-even")
-    sweep.add_argument("--layers", type=_layers, default=4, help=f"1 to {MAX_LAYERS} (default 4)")
+    _add_structure_args(sweep)
     sweep.add_argument("--repeats", type=_whole("repeats"), default=1,
                        help="runs a point, seeds 0, 1, ... of the spawn jitter (1 to 100)")
     sweep.add_argument("--spawn-jitter", type=_number("spawn jitter"), default=2.0, metavar="MM",
@@ -112,7 +154,7 @@ def _add_sweep_parser(sub: argparse._SubParsersAction) -> None:
                        help="runs at once (default: the CPU count)")
     sweep.add_argument("--timeout", type=_number("timeout"), default=900.0,
                        help="seconds a run may take before it is stopped and failed (default 900)")
-    sweep.add_argument("--backend", choices=("process", "ray"), default="process")
+    sweep.add_argument("--backend", type=_one_of("backend", ("process", "ray")), default="process")
     sweep.add_argument("--ray-address", help="an existing Ray cluster (default: start one here)")
     sweep.add_argument("--out", type=Path, default=Path("runs/sweep"), help="output folder")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -168,7 +210,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     from .plan import make_plan
 
     config = config_from_args(args)
-    print(json.dumps(make_plan(args.structure, args.layers, config).to_json(), indent=2))
+    plan = make_plan(spec_from_args(args, config), config, args.arms)
+    print(json.dumps(plan.to_json(), indent=2))
     return 0
 
 
@@ -192,7 +235,7 @@ def _cmd_build(args: argparse.Namespace) -> int:
     from .build import prepare, run_build
     from .results import write_json_atomic
 
-    plan = prepare(args.structure, args.layers, config)
+    plan = prepare(spec_from_args(args, config), config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
     snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
     with (
@@ -225,7 +268,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
     from .simulation import BuildSim
 
     config = config_from_args(args)
-    sim = BuildSim(prepare(args.structure, args.layers, config), config)
+    sim = BuildSim(prepare(spec_from_args(args, config), config, args.arms), config)
     start = time.perf_counter()
     try:
         viewer = mujoco.viewer.launch_passive(sim.model, sim.data)
@@ -249,7 +292,7 @@ def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
         parse_axis(name, getattr(args, name)) for name in PARAMETERS if getattr(args, name) is not None
     )
     return SweepConfig(
-        axes=axes, structure=args.structure, layers=args.layers, repeats=args.repeats,
+        axes=axes, structure=spec_from_args(args, SimConfig()), arms=args.arms, repeats=args.repeats,
         spawn_jitter_mm=args.spawn_jitter, workers=args.workers, timeout=args.timeout,
         backend=args.backend, ray_address=args.ray_address,
     )
@@ -267,7 +310,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from .build import prepare
     from .sweep import report, run_sweep
 
-    prepare(config.structure, config.layers, SimConfig())  # out of reach: one line, nothing run
+    prepare(config.structure, SimConfig(), config.arms)  # out of reach: one line, nothing run
     runs = len(config.runs())
     with tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar:
         rows, ran = run_sweep(
@@ -282,7 +325,31 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return 0 if len(rows) == runs else EXIT_FAILED
 
 
-COMMANDS = {"plan": _cmd_plan, "build": _cmd_build, "view": _cmd_view, "sweep": _cmd_sweep}
+def _cmd_reach(args: argparse.Namespace) -> int:
+    from .reach import ReachChecker
+    from .structures import SIZE_KNOB
+
+    arm_sets = ("both", "left", "right") if args.arms == "all" else (args.arms,)
+    checker = ReachChecker(SimConfig())
+    rows = [["structure", "grows", "other options", *(f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets)]]
+    for name, knob in SIZE_KNOB.items():
+        spec = StructureSpec(name)
+        others = " ".join(f"{k}={v}" for k, v in spec.size.items() if k != knob)
+        if name == "wall":
+            others = "3 courses"
+        elif name == "wall-pyramid":
+            others = "layers=min(3, width)"
+        rows.append([name, knob, others or "-", *(str(checker.largest(spec, a)) for a in arm_sets)])
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    for r in rows:
+        print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+    return 0
+
+
+COMMANDS = {
+    "plan": _cmd_plan, "build": _cmd_build, "view": _cmd_view, "sweep": _cmd_sweep,
+    "reach": _cmd_reach,
+}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

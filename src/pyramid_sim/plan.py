@@ -5,18 +5,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .assignment import Assignment, arrange
-from .config import SimConfig
+from .assignment import Assignment, arrange, single_arm
+from .config import LayoutConfig, SimConfig
+from .errors import ConfigError
 from .poses import Pose
-from .structures import make_structure
+from .structures import StructureSpec
+
+ARM_CHOICES = ("both", "left", "right")
 
 
 @dataclass(frozen=True)
 class Plan:
-    structure: str
-    layers: int
+    spec: StructureSpec
+    arms: str  # both, left or right
     spawn: Pose
     bricks: tuple[Assignment, ...]
+
+    @property
+    def structure(self) -> str:
+        return self.spec.name
 
     def arm_order(self, arm: str) -> list[int]:
         """Build-order indices of the bricks this arm places."""
@@ -26,7 +33,8 @@ class Plan:
         """The `pyramid-sim plan` document: metres and radians, world frame."""
         return {
             "structure": self.structure,
-            "layers": self.layers,
+            "size": self.spec.size,
+            "arms": self.arms,
             "spawn": {"position": _xyz(self.spawn), "yaw": round(self.spawn.yaw, 6)},
             "bricks": [
                 {
@@ -45,8 +53,15 @@ def _xyz(pose: Pose) -> list[float]:
     return [round(pose.x, 6), round(pose.y, 6), round(pose.z, 6)]
 
 
-def make_plan(structure: str, layers: int, config: SimConfig) -> Plan:
-    """Targets of the structure, assigned to the arms by the seed's rule."""
+def _base_y(layout: LayoutConfig, arm: str) -> float:
+    return (layout.left_base if arm == "left" else layout.right_base)[1]
+
+
+def make_plan(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
+    """Targets of the structure, assigned to the arms by the seed's rule; with one arm, that
+    arm places every brick in the structure's own order (the Brick Manager's single Panda)."""
+    if arms not in ARM_CHOICES:
+        raise ConfigError(f"arms: unknown {arms!r}; accepted {', '.join(ARM_CHOICES)}")
     layout = config.layout
     spawn = Pose(
         layout.spawn_xy[0],
@@ -54,5 +69,9 @@ def make_plan(structure: str, layers: int, config: SimConfig) -> Plan:
         layout.table_top_z + config.brick.height / 2,
         layout.spawn_yaw,
     )
-    targets = make_structure(structure, layers, config.brick, (spawn.x, spawn.y, spawn.z))
-    return Plan(structure, layers, spawn, arrange(targets))
+    # With one arm the structure stands in front of it (the Brick Manager's single Panda built
+    # before itself); with two, centred on the spawn spot between them, as the seed.
+    centre_y = spawn.y if arms == "both" else _base_y(layout, arms)
+    targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y)
+    order = arrange(targets) if arms == "both" else single_arm(targets, arms)
+    return Plan(spec, arms, spawn, order)

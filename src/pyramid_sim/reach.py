@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from . import constants as c
@@ -11,7 +13,7 @@ from .ik import DualArmIK
 from .plan import Plan, make_plan
 from .poses import Pose
 from .primitives import clear_pose, pick_steps, place_steps
-from .structures import MAX_LAYERS
+from .structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
 
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
@@ -24,10 +26,14 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
             for step in pick_steps(plan.spawn, motion):
                 if step.pose is not None:
                     poses.append((arm, f"pick {step.name}", step.pose))
+    goals = plan.spec.goals
     for b in plan.bricks:
+        label = f"brick {b.index}"
+        if goals:
+            label += f" (goals row {goals.index(b.target) + 1})"
         for step in place_steps(b.target.pose, motion):
             if step.pose is not None:
-                poses.append((b.arm, f"brick {b.index} {step.name}", step.pose))
+                poses.append((b.arm, f"{label} {step.name}", step.pose))
     return poses
 
 
@@ -59,15 +65,32 @@ class ReachChecker:
             if reason is not None:
                 raise UnreachableError(f"{what}: {reason}")
 
-    def largest(self, structure: str, below: int = MAX_LAYERS + 1) -> int:
-        """The most layers (under `below`) of `structure` whose every pose is reachable."""
-        for layers in range(below - 1, 0, -1):
+    def largest(self, spec: StructureSpec, arms: str = "both", below: int | None = None) -> int:
+        """The largest value (under `below`) of the structure's size knob (SIZE_KNOB: layers,
+        width or towers; the other options as in `spec`) whose every pose is reachable."""
+        knob = SIZE_KNOB[spec.name]
+        top = MAX_LAYERS if knob == "layers" else MAX_COURSE
+        for value in range(min(top, (below or top + 1) - 1), 0, -1):
             try:
-                self.check(make_plan(structure, layers, self.config))
-                return layers
+                sized = resized(spec, knob, value)
+            except ConfigError:
+                continue
+            try:
+                self.check(make_plan(sized, self.config, arms))
+                return value
             except UnreachableError:
                 continue
         return 0
+
+
+def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
+    """`spec` with its size knob set to `value`: a wall keeps three full courses (width,
+    width + 1 with the turned ends, width), a wall pyramid its layers within its base."""
+    if spec.name == "wall":
+        return replace(spec, width=value, bricks=3 * value + 1)
+    if spec.name == "wall-pyramid":
+        return replace(spec, width=value, layers=min(spec.layers or 1, value))
+    return replace(spec, **{knob: value})
 
 
 def require_reachable(plan: Plan, config: SimConfig) -> None:
@@ -76,8 +99,12 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
     try:
         checker.check(plan)
     except UnreachableError as err:
-        best = checker.largest(plan.structure, below=plan.layers)
+        spec = plan.spec
+        what = f"{spec.name} ({spec.size_text()}, arms {plan.arms})"
+        if spec.name not in SIZE_KNOB:
+            raise ConfigError(f"goals: {what} is out of reach: {err}") from None
+        knob = SIZE_KNOB[spec.name]
+        best = checker.largest(spec, plan.arms, below=getattr(spec, knob))
         raise ConfigError(
-            f"layers: {plan.structure} with {plan.layers} layers is out of reach ({err}); "
-            f"the largest reachable is {best} layers"
+            f"{knob}: {what} is out of reach ({err}); the largest reachable is {knob} {best}"
         ) from None

@@ -82,19 +82,29 @@ def result_document(raw: RawResult, tol: Tolerances = Tolerances()) -> dict[str,
     placed = sum(b["placed"] for b in bricks)
     n = len(bricks)
     slips = [v for v in raw.slip_mm.values() if math.isfinite(v)]
-    success = raw.failure is None and placed == n and not raw.dropped and raw.arm_arm_contacts == 0
+    over_speed = raw.joint_speed_ratio > 1.0
+    success = (
+        raw.failure is None and placed == n and not raw.dropped and raw.arm_arm_contacts == 0
+        and not over_speed
+    )
     reason = raw.failure
     if reason is None and not success:
         missing = [b["index"] for b in bricks if not b["placed"]]
-        reason = f"{n - placed} of {n} bricks not in place (build order {missing})"
+        problems = [f"{n - placed} of {n} bricks not in place (build order {missing})"] if missing else []
+        if raw.dropped:
+            problems.append(f"bricks dropped (build order {sorted(raw.dropped)})")
         if raw.arm_arm_contacts:
-            reason += f"; {raw.arm_arm_contacts} arm-arm contacts"
+            problems.append(f"{raw.arm_arm_contacts} arm-arm contacts")
+        if over_speed:
+            problems.append(f"a joint moved at {raw.joint_speed_ratio:.2f} of its velocity limit")
+        reason = "; ".join(problems)
     worst = max((b.get("error_xy_mm", math.inf) for b in bricks), default=0.0)
     return {
         "success": success,
         "failure_reason": reason,
         "structure": raw.plan.structure,
-        "layers": raw.plan.layers,
+        "size": raw.plan.spec.size,
+        "arms": raw.plan.arms,
         "bricks_total": n,
         "bricks_placed": placed,
         "bricks": bricks,

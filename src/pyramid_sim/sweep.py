@@ -16,7 +16,11 @@ from .sweep_store import SweepStore
 def run_file_name(result: RunResult) -> str:
     spec = result.spec
     params = "_".join(f"{n}={value_text(v)}" for n, v in spec.params)
-    return f"{spec.structure}-{spec.layers}_{params}_jitter={spec.spawn_jitter_mm:g}_seed={spec.seed}.json"
+    size = spec.structure.size_text().replace(" ", "_").replace(":", "-")
+    return (
+        f"{spec.structure.name}_{size}_{spec.arms}_{params}_jitter={spec.spawn_jitter_mm:g}"
+        f"_seed={spec.seed}.json"
+    )
 
 
 def run_sweep(

@@ -13,7 +13,8 @@ from typing import Callable
 
 from .config import SimConfig, check_range
 from .errors import ConfigError
-from .structures import MAX_LAYERS, STRUCTURES
+from .plan import ARM_CHOICES
+from .structures import StructureSpec
 
 MAX_POINTS_PER_AXIS = 50
 MAX_RUNS = 10_000
@@ -102,8 +103,8 @@ def parse_axis(name: str, text: str) -> Axis:
 class RunSpec:
     """One build of the sweep: a grid point and a seed."""
 
-    structure: str
-    layers: int
+    structure: StructureSpec
+    arms: str
     params: tuple[tuple[str, float], ...]  # in PARAMETERS order
     seed: int
     spawn_jitter_mm: float
@@ -118,8 +119,9 @@ class RunSpec:
     def key(self) -> tuple[str, ...]:
         """The run's identity as the CSV spells it (see sweep_store.KEY_COLUMNS)."""
         return (
-            self.structure,
-            str(self.layers),
+            self.structure.name,
+            self.structure.size_text(),
+            self.arms,
             *(value_text(v) for _, v in self.params),
             value_text(self.spawn_jitter_mm),
             str(self.seed),
@@ -131,8 +133,8 @@ class SweepConfig:
     """A whole sweep: the grid, the build, the repeats and how the runs are executed."""
 
     axes: tuple[Axis, ...] = field(default_factory=tuple)  # only the axes the user gave
-    structure: str = "pyramid-even"
-    layers: int = 4
+    structure: StructureSpec = field(default_factory=StructureSpec)
+    arms: str = "both"
     repeats: int = 1
     spawn_jitter_mm: float = 2.0
     workers: int = 2
@@ -141,11 +143,8 @@ class SweepConfig:
     ray_address: str | None = None
 
     def __post_init__(self) -> None:
-        if self.structure not in STRUCTURES:
-            raise ConfigError(
-                f"structure: unknown {self.structure!r}; accepted {', '.join(sorted(STRUCTURES))}"
-            )
-        check_range("layers", self.layers, 1, MAX_LAYERS)
+        if self.arms not in ARM_CHOICES:
+            raise ConfigError(f"arms: unknown {self.arms!r}; accepted {', '.join(ARM_CHOICES)}")
         check_range("repeats", self.repeats, 1, 100)
         check_range("workers", self.workers, 1, 256)
         check_range("timeout (s)", self.timeout, 0.0, 86400.0, low_open=True)
@@ -179,7 +178,7 @@ class SweepConfig:
         for axis in self.full_axes():
             points = [p + ((axis.name, v),) for p in points for v in axis.values]
         return [
-            RunSpec(self.structure, self.layers, p, seed, self.spawn_jitter_mm)
+            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm)
             for p in points
             for seed in range(self.repeats)
         ]

@@ -121,7 +121,8 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         for i, yv in enumerate(ys):
             for j, xv in enumerate(xs):
                 text = label(stats[(xv, yv)]) if (xv, yv) in stats else "not run"
-                ax.text(j, i, text, ha="center", va="center", fontsize=8, color="white",
+                ax.text(j, i, text, ha="center", va="center", fontsize=8 if len(text) < 7 else 6.5,
+                        color="white",
                         path_effects=[patheffects.withStroke(linewidth=2, foreground="black")])
         ax.set_xticks(range(len(xs)), xs)
         ax.set_xlabel(x.label)
@@ -135,7 +136,8 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
     )
     folded = [a.label for a in config.full_axes() if len(a.values) > 1 and a not in (x, y)]
     fig.suptitle(
-        f"{config.structure} {config.layers} layers, {config.repeats} run(s) a point, spawn "
+        f"{config.structure.name} ({config.structure.size_text()}, arms {config.arms}), "
+        f"{config.repeats} run(s) a point, spawn "
         f"jitter {config.spawn_jitter_mm:g} mm; {fixed}"
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )

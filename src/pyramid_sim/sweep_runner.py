@@ -58,7 +58,7 @@ def run_one(spec: RunSpec) -> RunResult:
         from .plan import make_plan
 
         config = spec.config()
-        document = run_build(make_plan(spec.structure, spec.layers, config), config)
+        document = run_build(make_plan(spec.structure, config, spec.arms), config)
     except Exception as err:  # the sweep goes on; the row says what happened
         return failed(spec, f"crashed: {type(err).__name__}: {err}", time.perf_counter() - start)
     row = _row(

@@ -17,7 +17,7 @@ from typing import Any
 from .errors import ConfigError
 from .sweep_grid import PARAMETERS
 
-KEY_COLUMNS = ("structure", "layers", *PARAMETERS, "spawn_jitter_mm", "seed")
+KEY_COLUMNS = ("structure", "size", "arms", *PARAMETERS, "spawn_jitter_mm", "seed")
 RESULT_COLUMNS = (
     "success",
     "bricks_placed",

@@ -1,0 +1,126 @@
+"""Place goals from a file (the Brick Manager's fixed list): JSON or CSV of x, y, z, yaw per
+brick, in build order. Pure: every problem is a ConfigError naming the file and the row.
+
+JSON: `{"goals": [{"x": .., "y": .., "z": .., "yaw": ..}, ...]}` or the list alone.
+CSV: a header line `x,y,z,yaw`, then one brick a line. Metres and radians, world frame, z the
+brick's resting centre height; `yaw` may be left out (0: long axis pointing away).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+
+from .config import BrickConfig
+from .errors import ConfigError
+from .poses import Pose
+from .structures import BrickTarget
+
+COLUMNS = ("x", "y", "z", "yaw")
+REQUIRED = ("x", "y", "z")
+MAX_GOALS = 200
+LAYER_SLACK = 0.25  # of a brick height: a goal this near a course height is on that course
+
+
+def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTarget, ...]:
+    """The goals of `path` as targets, each in a course counted from `table_z` (the resting
+    centre height of a brick on the table). Refuses unknown columns, non-numbers, goals below
+    the table or between courses, and bricks that overlap, naming the row (1 = first goal)."""
+    name = path.name
+    try:
+        text = path.read_text()
+    except OSError as err:
+        raise ConfigError(f"goals: cannot read {str(path)!r} ({err.strerror})") from None
+    rows = _json_rows(text, name) if path.suffix.lower() == ".json" else _csv_rows(text, name)
+    if not rows:
+        raise ConfigError(f"goals: {name} holds no goals; accepted 1 to {MAX_GOALS}")
+    if len(rows) > MAX_GOALS:
+        raise ConfigError(f"goals: {name} holds {len(rows)} goals; accepted 1 to {MAX_GOALS}")
+    targets = [_target(i, row, name, brick, table_z) for i, row in enumerate(rows, start=1)]
+    for i, a in enumerate(targets):
+        for j in range(i):
+            if bricks_overlap(targets[j].pose, a.pose, brick):
+                raise ConfigError(f"goals: {name} rows {j + 1} and {i + 1}: the bricks overlap")
+    return tuple(targets)
+
+
+def _json_rows(text: str, name: str) -> list[dict]:
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise ConfigError(f"goals: {name} is not JSON ({err.msg}, line {err.lineno})") from None
+    rows = doc.get("goals") if isinstance(doc, dict) else doc
+    if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+        raise ConfigError(
+            f"goals: {name} must hold a list of {{x, y, z, yaw}} objects, alone or under \"goals\""
+        )
+    return rows
+
+
+def _csv_rows(text: str, name: str) -> list[dict]:
+    reader = csv.DictReader(io.StringIO(text))
+    if reader.fieldnames is None:
+        raise ConfigError(f"goals: {name} is empty; accepted a header x,y,z,yaw and one row a brick")
+    rows = []
+    for row in reader:
+        if None in row:
+            raise ConfigError(
+                f"goals: {name} row {reader.line_num - 1}: more values than columns"
+            )
+        rows.append({k.strip(): v for k, v in row.items()})
+    return rows
+
+
+def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) -> BrickTarget:
+    where = f"goals: {name} row {i}"
+    unknown = [k for k in row if k not in COLUMNS]
+    if unknown:
+        raise ConfigError(f"{where}: unknown column {unknown[0]!r}; accepted {', '.join(COLUMNS)}")
+    missing = [k for k in REQUIRED if k not in row or row[k] in ("", None)]
+    if missing:
+        raise ConfigError(f"{where}: no {missing[0]}; accepted columns {', '.join(COLUMNS)}")
+    values = {}
+    for key in COLUMNS:
+        raw = row.get(key, 0.0)
+        raw = 0.0 if raw in ("", None) else raw
+        try:
+            if isinstance(raw, bool):
+                raise ValueError
+            value = float(raw)
+        except (TypeError, ValueError):
+            raise ConfigError(f"{where}: {key} {raw!r} is not a number") from None
+        if not math.isfinite(value):
+            raise ConfigError(f"{where}: {key} {raw!r} is not a finite number")
+        values[key] = value
+    height = (values["z"] - table_z) / brick.height
+    layer = round(height)
+    if layer < 0 or abs(height - layer) > LAYER_SLACK:
+        raise ConfigError(
+            f"{where}: z {values['z']:g} is not a resting height; accepted {table_z:g} + k x "
+            f"{brick.height:g} (k = 0, 1, ...)"
+        )
+    pose = Pose(values["x"], values["y"], table_z + layer * brick.height, values["yaw"])
+    return BrickTarget(pose, layer)
+
+
+def bricks_overlap(a: Pose, b: Pose, brick: BrickConfig) -> bool:
+    """Whether two bricks in the same course overlap in plan (separating axes of two
+    rectangles); bricks of different courses never do."""
+    if abs(a.z - b.z) >= brick.height * (1 - LAYER_SLACK):
+        return False
+    half = (brick.length / 2, brick.width / 2)
+    centre = (b.x - a.x, b.y - a.y)
+    axes = [(math.cos(a.yaw), math.sin(a.yaw)), (-math.sin(a.yaw), math.cos(a.yaw)),
+            (math.cos(b.yaw), math.sin(b.yaw)), (-math.sin(b.yaw), math.cos(b.yaw))]
+    for ax in axes:
+        distance = abs(centre[0] * ax[0] + centre[1] * ax[1])
+        reach = 0.0
+        for box in (axes[0:2], axes[2:4]):
+            reach += half[0] * abs(box[0][0] * ax[0] + box[0][1] * ax[1])
+            reach += half[1] * abs(box[1][0] * ax[0] + box[1][1] * ax[1])
+        if distance >= reach - 1e-9:
+            return False
+    return True
