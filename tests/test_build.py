@@ -118,11 +118,17 @@ def _brick_manager_spec(name: str) -> StructureSpec:
 
 @pytest.mark.parametrize(
     "name, arms",
-    [("wall-pyramid", "both"), ("towers", "both"), ("list", "both"), ("list", "left")],
+    [
+        ("wall", "both"), ("wall", "left"),
+        ("wall-pyramid", "both"), ("wall-pyramid", "right"),
+        ("towers", "both"), ("towers", "right"),
+        ("list", "both"), ("list", "left"),
+        ("pyramid", "left"), ("pyramid-even", "left"),
+    ],
 )
-def test_brick_manager_structures_rest_on_their_targets(name, arms):
-    """The Brick Manager's structures at their default sizes (the seed's five goals for the
-    list), every final pose within the pyramid tests' tolerances."""
+def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
+    """Every structure at its default size (the seed's five goals for the list), by both arms
+    and by one alone; every final pose within the pyramid tests' tolerances."""
     from pyramid_sim.build import run_build
 
     config = SimConfig()

@@ -12,7 +12,7 @@ from .config import SimConfig
 from .constants import GRIPPER_KP
 from .poses import Pose
 from .primitives import Step, StepKind
-from .trajectory import Segment, plan_segment
+from .trajectory import Path, plan_path
 
 
 @dataclass
@@ -22,7 +22,7 @@ class ArmRunner:
     pose: Pose  # commanded tool-centre pose
     gap: float  # commanded finger gap (m)
     steps: list[Step] = field(default_factory=list)
-    _segment: Segment | None = None
+    _segment: Path | None = None
     _t: float = 0.0
     _gap_from: float = 0.0
 
@@ -65,7 +65,9 @@ class ArmRunner:
         if step is not None and step.kind is StepKind.MOVE:
             assert step.pose is not None
             motion = self.config.motion
-            self._segment = plan_segment(self.pose, step.pose, step.speed, motion.turn_rate)
+            self._segment = plan_path(
+                self.pose, step.pose, step.speed, motion.turn_rate, step.transit
+            )
 
     def tick(self, dt: float, ik_error: float) -> Step | None:
         """Advance by dt; returns the step that finished on this tick, if any."""

@@ -131,7 +131,7 @@ class SimConfig:
     motion: MotionConfig = field(default_factory=MotionConfig)
     timestep: float = 0.002
     settle_time: float = 1.0  # s of physics after both arms retract, before measuring
-    max_sim_time: float = 300.0  # s, a build still running then has failed
+    max_sim_time: float = 600.0  # s, a build still running then has failed
     stall_time: float = 60.0  # s, a build in which no arm finishes a move for this long has failed
     seed: int = 0  # of the spawn jitter: the only randomness in a build
 

@@ -37,23 +37,34 @@ class Step:
     pose: Pose | None = None
     speed: float = 0.0
     enters_zone: bool = False  # the first step into the shared zone waits for the barrier
+    transit: bool = False  # up, over and down at the higher end's height (trajectory.plan_path)
 
 
 def pick_steps(
     brick: Pose,
     motion: MotionConfig,
+    carry_to: Pose | None = None,
     grasp_height: float = GRASP_HEIGHT,
     yaw_ref: float = YAW_REFERENCE,
 ) -> list[Step]:
-    """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre."""
+    """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre.
+
+    With `carry_to` (the resting pose the brick is for) the retract lifts straight up to that
+    place's hover height, so the carry over to it is level: a carried brick never cuts down
+    across the courses already laid (walls run towards the spawn spot)."""
     grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
     half = motion.hover / 2
+    retract = grasp.moved(dz=half)
+    if carry_to is not None:
+        retract = grasp.moved(dz=max(half, carry_to.z + motion.hover - brick.z))
     return [
-        Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed, enters_zone=True),
+        # Back from a place above the courses: level over to the spot, then down.
+        Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed,
+             enters_zone=True, transit=True),
         Step("approach", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
         Step("servo", StepKind.MOVE, grasp, motion.slow_speed),
         Step("grip", StepKind.GRIP),
-        Step("retract", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
+        Step("retract", StepKind.MOVE, retract, motion.slow_speed),
     ]
 
 

@@ -22,15 +22,14 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
     poses = []
     for arm in c.ARMS:
         poses.append((arm, "clear pose", clear_pose(arm, motion)))
-        if plan.arm_order(arm):
-            for step in pick_steps(plan.spawn, motion):
-                if step.pose is not None:
-                    poses.append((arm, f"pick {step.name}", step.pose))
     goals = plan.spec.goals
     for b in plan.bricks:
         label = f"brick {b.index}"
         if goals:
             label += f" (goals row {goals.index(b.target) + 1})"
+        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose):
+            if step.pose is not None:
+                poses.append((b.arm, f"{label} pick {step.name}", step.pose))
         for step in place_steps(b.target.pose, motion):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} {step.name}", step.pose))

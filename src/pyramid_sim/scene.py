@@ -28,6 +28,7 @@ from . import constants as c
 from .config import SimConfig
 
 ASSETS = Path(__file__).resolve().parents[2] / "assets"
+ARM_DAMPING = 10.0  # N m s/rad: at 1 or 4 walls built by two arms lose bricks (see README)
 PAD_SOLREF = (0.004, 1.0)
 PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
 PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the robots
@@ -64,7 +65,7 @@ def _tune_arm(spec: mujoco.MjSpec) -> None:
     for name, kp, torque in zip(c.ARM_JOINTS, c.JOINT_KP, c.JOINT_TORQUE_LIMITS):
         joint = spec.joint(name)
         joint.armature = 0.1
-        joint.damping = [1.0, 0.0, 0.0]
+        joint.damping = [ARM_DAMPING, 0.0, 0.0]
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         act.set_to_position(kp=kp, kv=0.0)
         act.ctrlrange = joint.range

@@ -185,7 +185,9 @@ class BuildSim:
         task = self.scheduler.task(arm)
         motion = self.config.motion
         if task.action is Action.PICK:
-            runner.load(pick_steps(self.plan.spawn, motion))
+            assert task.brick is not None
+            target = self.plan.bricks[task.brick].target.pose
+            runner.load(pick_steps(self.plan.spawn, motion, carry_to=target))
         elif task.action is Action.PLACE:
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose

@@ -48,3 +48,37 @@ def plan_segment(
     turn = abs(wrap_angle(end.yaw - start.yaw))
     duration = 1.875 * max(distance / speed, turn / turn_rate)
     return Segment(start, end, max(min_duration, duration))
+
+
+@dataclass(frozen=True)
+class Path:
+    """Segments run one after the other (each comes to rest at its end)."""
+
+    segments: tuple[Segment, ...]
+
+    @property
+    def duration(self) -> float:
+        return sum(s.duration for s in self.segments)
+
+    def at(self, t: float) -> Pose:
+        for segment in self.segments:
+            if t < segment.duration:
+                return segment.at(t)
+            t -= segment.duration
+        return self.segments[-1].end
+
+
+def plan_path(start: Pose, end: Pose, speed: float, turn_rate: float, transit: bool) -> Path:
+    """A straight move; for a transit, up, over and down at the higher of the two heights, so
+    the hand never cuts down across bricks already laid on its way (a straight descent from
+    above the top course to the spawn spot clips the courses between). The wrist turns on the
+    level leg."""
+    points = [start]
+    if transit:
+        high = max(start.z, end.z)
+        if high - start.z > 1e-3:
+            points.append(Pose(start.x, start.y, high, start.yaw))
+        if high - end.z > 1e-3:
+            points.append(Pose(end.x, end.y, high, end.yaw))
+    points.append(end)
+    return Path(tuple(plan_segment(a, b, speed, turn_rate) for a, b in zip(points, points[1:])))
