@@ -1,6 +1,7 @@
 """The command line: plan JSON, bad input (one line, exit 2, nothing written), a real build."""
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -66,3 +67,50 @@ def test_build_writes_the_result(tmp_path):
     for key in ("index", "arm", "layer", "target", "final", "error_xy_mm", "error_z_mm",
                 "yaw_error_deg", "tilt_deg", "dropped"):
         assert key in brick
+
+
+GOALS = Path(__file__).resolve().parents[1] / "assets" / "goals" / "seed_five.json"
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--structure", "wall", "--wall-width", "0"], "wall width"),
+        (["--structure", "wall", "--layers", "3"], "not an option of wall"),
+        (["--structure", "wall-pyramid", "--wall-width", "2", "--layers", "3"], "accepted 1 to 2"),
+        (["--structure", "towers", "--towers", "13"], "towers"),
+        (["--structure", "list"], "goals"),
+        (["--structure", "pyramid", "--goals", str(GOALS)], "goals"),
+        (["--structure", "list", "--goals", "/nonexistent/g.json"], "cannot read"),
+        (["--structure", "pyramid", "--arms", "middle"], "arms"),
+        (["--structure", "wall", "--wall-width", "9"], "largest reachable is width"),
+    ],
+)
+def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, capsys, args, words):
+    out = tmp_path / "run"
+    try:
+        code = main(["build", *args, "--out", str(out)])
+    except SystemExit as exit_info:  # argparse's own refusals
+        code = exit_info.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
+    for args in (["--structure", "wall"], ["--structure", "towers", "--arms", "right"],
+                 ["--structure", "list", "--goals", str(GOALS)]):
+        assert main(["plan", *args]) == 0
+        doc = json.loads(capsys.readouterr().out)
+        assert doc["structure"] == args[1] and doc["size"] and doc["bricks"]
+        assert all("yaw" in b for b in doc["bricks"])
+    assert {b["arm"] for b in doc["bricks"]} == {"left", "right"}
+
+
+def test_reach_prints_the_largest_size_of_every_structure(capsys):
+    assert main(["reach", "--arms", "both"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    rows = {line.split()[0]: line.split()[-1] for line in lines[1:]}
+    assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers"}
+    assert rows["pyramid-even"] == "5"  # the README's figure; the default 4 fits under it
