@@ -1,6 +1,7 @@
 import pytest
 
 from pyramid_sim.build import prepare, run_build
+from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
 from pyramid_sim.structures import StructureSpec
 
@@ -19,3 +20,21 @@ def build_once(structure: str, layers: int) -> dict:
 @pytest.fixture(scope="session")
 def built():
     return build_once
+
+
+@pytest.fixture
+def refused(capsys):
+    """Run the command line expecting a refusal: exit status 2 and one error line without a
+    traceback, which it returns."""
+
+    def run(argv: list[str]) -> str:
+        try:
+            code = main(argv)
+        except SystemExit as exit_info:  # argparse's own refusals
+            code = exit_info.code
+        err = capsys.readouterr().err
+        assert code == 2, err
+        assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+        return err
+
+    return run

@@ -86,7 +86,8 @@ class ArmRunner:
         elif step.kind is StepKind.GRIP:
             ramp = self._t / grip.close_time
             # Past the ramp the command drops to closed: the force limit keeps the squeeze.
-            self.gap = self._gap_from + (self.squeeze_gap - self._gap_from) * ramp if ramp < 1 else 0.0
+            squeeze = self.squeeze_gap
+            self.gap = self._gap_from + (squeeze - self._gap_from) * ramp if ramp < 1 else 0.0
             finished = self._t >= grip.close_time + grip.settle_time
         else:  # RELEASE: hold still, then open
             wait = self.config.motion.settle_before_release

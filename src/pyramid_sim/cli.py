@@ -41,21 +41,6 @@ def _number(name: str):
     return parse
 
 
-def _size(name: str, top: int):
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"{name}: {text!r} is not a whole number; accepted 1 to {top}"
-            ) from None
-        if not 1 <= value <= top:
-            raise argparse.ArgumentTypeError(f"{name}: {value} is out of range; accepted 1 to {top}")
-        return value
-
-    return parse
-
-
 def _one_of(name: str, options: Sequence[str]):
     def parse(text: str) -> str:
         if text not in options:
@@ -71,14 +56,14 @@ def _add_structure_args(p: argparse.ArgumentParser) -> None:
     names = sorted(STRUCTURES)
     p.add_argument("--structure", type=_one_of("structure", names), default="pyramid-even",
                    metavar="NAME", help=f"{', '.join(names)} (default pyramid-even)")
-    p.add_argument("--layers", type=_size("layers", MAX_LAYERS), metavar="N",
+    p.add_argument("--layers", type=_whole("layers", f"1 to {MAX_LAYERS}"), metavar="N",
                    help="pyramid, pyramid-even (default 4), wall-pyramid (3), towers (3)")
-    p.add_argument("--bricks", type=_size("bricks", MAX_BRICKS), metavar="N",
+    p.add_argument("--bricks", type=_whole("bricks", f"1 to {MAX_BRICKS}"), metavar="N",
                    help="wall: bricks in all (default 15)")
     # Not --width: that is the video's width in `build` (issue 3's interface, kept).
-    p.add_argument("--wall-width", dest="wall_width", type=_size("wall width", MAX_COURSE),
-                   metavar="N", help="wall, wall-pyramid: bricks a course (default 5)")
-    p.add_argument("--towers", type=_size("towers", MAX_COURSE), metavar="N",
+    p.add_argument("--wall-width", dest="wall_width", metavar="N",
+                   type=_whole("wall width", f"1 to {MAX_COURSE}"), help="wall, wall-pyramid: bricks a course (default 5)")
+    p.add_argument("--towers", type=_whole("towers", f"1 to {MAX_COURSE}"), metavar="N",
                    help="towers: how many (default 4)")
     p.add_argument("--goals", type=Path, metavar="FILE",
                    help="list: place goals, JSON or CSV of x, y, z, yaw (assets/goals/)")
@@ -173,12 +158,15 @@ def _add_video_args(p: argparse.ArgumentParser) -> None:
                    help="multisample anti-aliasing: 0 (default), 2, 4 or 8 (4 costs ~1.7x)")
 
 
-def _whole(name: str):
+def _whole(name: str, accepted: str = ""):
+    """Text to int; the range is checked where the value is used (config, StructureSpec)."""
+
     def parse(text: str) -> int:
         try:
             return int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a whole number") from None
+            hint = f"; accepted {accepted}" if accepted else ""
+            raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a whole number{hint}") from None
 
     return parse
 
@@ -326,20 +314,17 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_reach(args: argparse.Namespace) -> int:
-    from .reach import ReachChecker
+    from .reach import ReachChecker, held_fixed
     from .structures import SIZE_KNOB
 
     arm_sets = ("both", "left", "right") if args.arms == "all" else (args.arms,)
     checker = ReachChecker(SimConfig())
-    rows = [["structure", "grows", "other options", *(f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets)]]
+    arm_heads = [f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets]
+    rows = [["structure", "grows", "other options", *arm_heads]]
     for name, knob in SIZE_KNOB.items():
         spec = StructureSpec(name)
-        others = " ".join(f"{k}={v}" for k, v in spec.size.items() if k != knob)
-        if name == "wall":
-            others = "3 courses"
-        elif name == "wall-pyramid":
-            others = "layers=min(3, width)"
-        rows.append([name, knob, others or "-", *(str(checker.largest(spec, a)) for a in arm_sets)])
+        largest = [str(checker.largest(spec, a)) for a in arm_sets]
+        rows.append([name, knob, held_fixed(spec), *largest])
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
     for r in rows:
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())

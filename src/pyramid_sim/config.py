@@ -25,6 +25,12 @@ def check_range(
         raise ConfigError(f"{name}: {value} is out of range; accepted {_span(low, high, low_open)}")
 
 
+def check_count(name: str, value: int, low: int, high: int) -> None:
+    """Raise ConfigError unless `value` is a whole number from low to high."""
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise ConfigError(f"{name}: {value!r} is out of range; accepted {low} to {high}, whole numbers")
+
+
 def _span(low: float, high: float, low_open: bool) -> str:
     return f"{'(' if low_open else '['}{low:g}, {high:g}]"
 
@@ -140,8 +146,7 @@ class SimConfig:
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
         check_range("stall time", self.stall_time, 1.0, 36000.0)
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or not 0 <= self.seed < 2**32:
-            raise ConfigError(f"seed: {self.seed!r} is out of range; accepted whole numbers 0 to {2**32 - 1}")
+        check_count("seed", self.seed, 0, 2**32 - 1)
         steps = self.motion.control_dt / self.timestep
         if abs(steps - round(steps)) > 1e-9:
             raise ConfigError(

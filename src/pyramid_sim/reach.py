@@ -92,6 +92,16 @@ def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
     return replace(spec, **{knob: value})
 
 
+def held_fixed(spec: StructureSpec) -> str:
+    """How `resized` holds the other size options while the knob grows (the reach table)."""
+    if spec.name == "wall":
+        return "3 courses"
+    if spec.name == "wall-pyramid":
+        return f"layers=min({spec.layers}, width)"
+    knob = SIZE_KNOB[spec.name]
+    return " ".join(f"{k}={v}" for k, v in spec.size.items() if k != knob) or "-"
+
+
 def require_reachable(plan: Plan, config: SimConfig) -> None:
     """ConfigError (exit 2 at the command line) naming the largest reachable size."""
     checker = ReachChecker(config)

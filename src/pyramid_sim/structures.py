@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Callable
 
-from .config import BrickConfig
+from .config import BrickConfig, check_count
 from .errors import ConfigError
 from .poses import Pose
 
@@ -75,8 +75,7 @@ def create_coordinates_new(layer: int) -> tuple[list[list[float]], list[float]]:
 
 
 def _check_layers(layers: int) -> None:
-    if isinstance(layers, bool) or not isinstance(layers, int) or not 1 <= layers <= MAX_LAYERS:
-        raise ConfigError(f"layers: {layers!r} is out of range; accepted 1 to {MAX_LAYERS}")
+    check_count("layers", layers, 1, MAX_LAYERS)
 
 
 def _layout(
@@ -167,10 +166,8 @@ def wall(
     is flush with the wall's end: `shift2` = (length - width) / 2 in from the end stretcher's
     centre, `shift1` = (length + width) / 2 from its neighbour's. Courses bottom first; the last
     course may be partial."""
-    if isinstance(width, bool) or not isinstance(width, int) or not 1 <= width <= MAX_COURSE:
-        raise ConfigError(f"width: {width!r} bricks a course; accepted 1 to {MAX_COURSE}")
-    if isinstance(bricks, bool) or not isinstance(bricks, int) or not 1 <= bricks <= MAX_BRICKS:
-        raise ConfigError(f"bricks: {bricks!r}; accepted 1 to {MAX_BRICKS}")
+    check_count("wall width", width, 1, MAX_COURSE)
+    check_count("bricks", bricks, 1, MAX_BRICKS)
     x, z0 = _wall_line(start, brick)
     pitch = brick.length + SEED_WALL_TOLERANCE
     y0 = start[1] - (width - 1) * pitch / 2  # centred on the spawn spot's y, as the pyramids
@@ -200,12 +197,8 @@ def wall_pyramid(
     """The seed's `goal_manager_server3`: stretchers end to end along y (yaw pi/2), `width` in
     the bottom course, each course above one shorter and shifted by half a brick, `layers`
     courses (at most `width`)."""
-    if isinstance(width, bool) or not isinstance(width, int) or not 1 <= width <= MAX_COURSE:
-        raise ConfigError(f"width: {width!r} bricks a course; accepted 1 to {MAX_COURSE}")
-    if isinstance(layers, bool) or not isinstance(layers, int) or not 1 <= layers <= width:
-        raise ConfigError(
-            f"layers: {layers!r} courses on a base of {width}; accepted 1 to {width}"
-        )
+    check_count("wall width", width, 1, MAX_COURSE)
+    check_count("layers", layers, 1, width)  # a course of `width` carries at most `width`
     x, z0 = _wall_line(start, brick)
     pitch = brick.length + SEED_WALL_TOLERANCE
     y0 = start[1] - (width - 1) * pitch / 2
@@ -226,8 +219,7 @@ def towers(
     """The seed's `generate_simple_wall` helper: `towers` columns of `layers` bricks side by
     side (yaw 0, the pyramids' gap between them), begun at the end away from the pick-up spot
     (the seed: pick-up at y >= 0, first tower at negative y). Tower by tower."""
-    if isinstance(towers, bool) or not isinstance(towers, int) or not 1 <= towers <= MAX_COURSE:
-        raise ConfigError(f"towers: {towers!r}; accepted 1 to {MAX_COURSE}")
+    check_count("towers", towers, 1, MAX_COURSE)
     _check_layers(layers)
     x, z0 = _wall_line(start, brick)
     pitch = brick.width + SEED_GAP
@@ -241,19 +233,16 @@ def towers(
     )
 
 
-def _from_goals(goals: tuple[BrickTarget, ...]) -> tuple[BrickTarget, ...]:
-    return goals
-
-
 # name -> (generator, its size options with their defaults). Every generator takes its size
-# options as keywords, then the brick and the spawn spot the layout starts from.
-STRUCTURES: dict[str, tuple[Callable[..., tuple[BrickTarget, ...]], dict[str, int]]] = {
+# options as keywords, then the brick and the spawn spot the layout starts from; a goal list
+# has no generator (its targets are the goals).
+STRUCTURES: dict[str, tuple[Callable[..., tuple[BrickTarget, ...]] | None, dict[str, int]]] = {
     "pyramid": (pyramid, {"layers": 4}),
     "pyramid-even": (pyramid_even, {"layers": 4}),
     "wall": (wall, {"bricks": 13, "width": 4}),  # the seed's 15 x 5: both arms only
     "wall-pyramid": (wall_pyramid, {"width": 5, "layers": 3}),
     "towers": (towers, {"towers": 4, "layers": 3}),
-    "list": (_from_goals, {}),
+    "list": (None, {}),
 }
 SIZE_OPTIONS = ("layers", "bricks", "width", "towers")
 # The option `reach` grows to find the largest buildable size.
@@ -323,7 +312,7 @@ class StructureSpec:
         """The resting targets, laid out from `start` (the spawn spot's x and z, the
         structure's centre y); goals are absolute and ignore it."""
         generator, defaults = STRUCTURES[self.name]
-        if self.name == "list":
+        if generator is None:
             assert self.goals is not None
             return self.goals
         options: dict = {o: getattr(self, o) for o in defaults}

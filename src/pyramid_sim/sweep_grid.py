@@ -156,8 +156,9 @@ class SweepConfig:
         names = [a.name for a in self.axes]
         if len(set(names)) != len(names):
             raise ConfigError(f"axes: a parameter is given twice ({', '.join(names)})")
-        if len(self.runs()) > MAX_RUNS:
-            raise ConfigError(f"grid: {len(self.runs())} runs; accepted at most {MAX_RUNS}")
+        runs = len(self.runs())
+        if runs > MAX_RUNS:
+            raise ConfigError(f"grid: {runs} runs; accepted at most {MAX_RUNS}")
 
     def full_axes(self) -> tuple[Axis, ...]:
         """All sweepable parameters in their fixed order, the ones not given at their default."""
