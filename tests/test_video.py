@@ -57,3 +57,24 @@ def test_bad_video_options_fail_before_physics(tmp_path, args, words):
     assert proc.returncode == 2
     assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "c").exists()
+
+
+def test_a_terminated_run_leaves_no_video_behind(tmp_path):
+    """SIGTERM mid-build: neither the asked-for MP4 nor its temporary file is left."""
+    import signal
+    import time
+
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers",
+         "2", "--quiet", "--out", "t", "--video", "t/build.mp4"],
+        env=env, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not list((tmp_path / "t").glob(".build.*")):
+        time.sleep(0.2)
+    assert list((tmp_path / "t").glob(".build.*")), "the recording never started"
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=60) == 128 + signal.SIGTERM
+    assert list((tmp_path / "t").iterdir()) == []

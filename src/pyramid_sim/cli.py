@@ -9,8 +9,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 import tempfile
+import threading
 from dataclasses import replace
 from pathlib import Path
 from typing import NoReturn, Sequence
@@ -337,7 +339,15 @@ COMMANDS = {
 }
 
 
+def _exit_on_sigterm(signum: int, frame: object) -> NoReturn:
+    raise SystemExit(128 + signum)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    # A terminated run unwinds like Ctrl-C, so the video's temporary file is removed: by
+    # default SIGTERM ends Python without running any `finally`.
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _exit_on_sigterm)
     parser = make_parser()
     args = parser.parse_args(argv)
     try:
