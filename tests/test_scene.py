@@ -43,3 +43,38 @@ def test_noisy_commands_for_one_second_raise_no_warning():
         mujoco.mj_step(model, data)
     assert all(w.number == 0 for w in data.warning)
     assert np.all(np.isfinite(data.qpos))
+
+
+def _arm_pose(model: mujoco.MjModel, data: mujoco.MjData, arm: str, q: list[float]) -> None:
+    for joint, value in zip(c.ARM_JOINTS, q):
+        data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+
+
+def test_arm_arm_contact_sensor_counts_only_contacts_between_the_arms():
+    model = build_scene(SimConfig(), 1).model
+    data = mujoco.MjData(model)
+    adr = model.sensor(c.ARM_ARM_SENSOR).adr[0]
+    reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]
+    for yaw in (0.0, 1.57):  # forward, then each arm turned towards the other
+        _arm_pose(model, data, "left", [-yaw, *reach])
+        _arm_pose(model, data, "right", [yaw, *reach])
+        mujoco.mj_forward(model, data)
+        if yaw == 0.0:
+            assert data.ncon > 0 and data.sensordata[adr] == 0  # contacts, none arm-arm
+        else:
+            assert data.sensordata[adr] > 0
+
+
+def test_resting_bricks_sleep_and_a_moved_brick_wakes():
+    model = build_scene(SimConfig(), 2).model
+    data = mujoco.MjData(model)
+    for _ in range(500):
+        mujoco.mj_step(model, data)
+    trees = [model.body_treeid[model.body(c.brick_name(i) + "brick").id] for i in range(2)]
+    assert all(data.tree_asleep[t] >= 0 for t in trees)
+    q = model.joint(c.brick_name(0) + "joint").qposadr[0]
+    data.qpos[q : q + 3] = [0.49, 0.01, 0.2]  # as the spawner does: 9 cm above the table
+    for _ in range(200):
+        mujoco.mj_step(model, data)
+    assert abs(data.qpos[q + 2] - 0.11) < 1e-3  # it fell onto the table
+    assert data.tree_asleep[trees[1]] >= 0  # the other stayed asleep

@@ -24,6 +24,9 @@ JOINT_KP: Final = (4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0)
 # A comfortable arm posture with the hand pointing down in front of the robot.
 HOME_QPOS: Final = (0.0, -0.3, 0.0, -2.2, 0.0, 1.9, 0.785)
 
+ARM_ROOT_BODY: Final = "panda_link0"
+ARM_ARM_SENSOR: Final = "arm_arm_contacts"  # contacts between the two arms, counted by MuJoCo
+
 BRICK_PREFIX: Final = "brick"
 TABLE_GEOM: Final = "table_top"
 

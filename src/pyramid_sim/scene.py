@@ -148,6 +148,13 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
         frame = spec.worldbody.add_frame(pos=list(base))
         spec.attach(panda_spec(config), prefix=f"{arm}/", frame=frame)
     if with_bricks:
+        # MuJoCo counts the contacts between the two arms' subtrees in C, every step.
+        spec.add_sensor(
+            name=c.ARM_ARM_SENSOR, type=mujoco.mjtSensor.mjSENS_CONTACT,
+            objtype=mujoco.mjtObj.mjOBJ_XBODY, objname=c.prefixed("left", c.ARM_ROOT_BODY),
+            reftype=mujoco.mjtObj.mjOBJ_XBODY, refname=c.prefixed("right", c.ARM_ROOT_BODY),
+            intprm=[1, 3, 1],  # data "found", reduce "netforce": one value, the contact count
+        )
         for slot in range(n_bricks):
             frame = spec.worldbody.add_frame(pos=list(park_position(slot)))
             spec.attach(brick_spec(config), prefix=c.brick_name(slot), frame=frame)

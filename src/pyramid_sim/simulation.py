@@ -14,6 +14,7 @@ from . import constants as c
 from .arm_runner import ArmRunner
 from .config import SimConfig
 from .errors import SimulationError
+from .monitor import StepMonitor
 from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
 from .plan import Plan
 from .poses import Pose, tcp_rotation
@@ -81,13 +82,6 @@ class BuildSim:
         }
         self.tcp_site = {a: m.site(c.prefixed(a, c.TCP_SITE)).id for a in c.ARMS}
         self.zone_bodies = {a: [m.body(c.prefixed(a, b)).id for b in ZONE_BODIES] for a in c.ARMS}
-        # Which arm each geom belongs to (0 none, 1 left, 2 right), for vectorised contact checks.
-        body_arm = np.zeros(m.nbody, dtype=np.int8)
-        for i in range(m.nbody):
-            for k, a in enumerate(c.ARMS, start=1):
-                if m.body(i).name.startswith(f"{a}/"):
-                    body_arm[i] = k
-        self.geom_arm = body_arm[m.geom_bodyid]
         brick = config.brick
         self.zone = shared_zone(
             plan.spawn, [b.target.pose for b in plan.bricks], brick.length / 2, 0.04
@@ -106,17 +100,21 @@ class BuildSim:
         self.slip_mm: dict[int, float] = {}
         self.dropped: set[int] = set()
         self.placed = 0
-        self.arm_arm_contacts = 0
         self.zone_violations = 0
-        self.finger_limit = 0.0
-        self.speed_ratio = 0.0
-        self.torque_ratio = 0.0
         self.steps = 0
-        self._fingers = np.concatenate([self.finger_qadr[a] for a in c.ARMS])
-        self._dofs = np.concatenate([self.dadr[a] for a in c.ARMS])
-        self._acts = np.concatenate([self.act[a] for a in c.ARMS])
-        self._inv_vel = 1.0 / np.tile(c.JOINT_VELOCITY_LIMITS, 2)
-        self._inv_torque = 1.0 / np.tile(c.JOINT_TORQUE_LIMITS, 2)
+        self.monitor = StepMonitor(
+            m, self.data,
+            dofs=np.concatenate([self.dadr[a] for a in c.ARMS]),
+            actuators=np.concatenate([self.act[a] for a in c.ARMS]),
+            fingers=np.concatenate([self.finger_qadr[a] for a in c.ARMS]),
+            finger_stroke=config.gripper.stroke,
+            substeps=config.substeps,
+        )
+        # Control vector layout: the arm joint targets then the gripper gap, per arm.
+        self._ctrl_idx = np.concatenate(
+            [np.append(self.act[a], self.grip_act[a]) for a in c.ARMS]
+        )
+        self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
 
     def _reset_arms(self) -> None:
         """Both arms start at their outer clear poses, outside the shared zone."""
@@ -144,23 +142,6 @@ class BuildSim:
 
     def _arm_outside(self, arm: str) -> bool:
         return not self.zone.any_inside(self.data.xpos[b] for b in self.zone_bodies[arm])
-
-    def _count_arm_contacts(self) -> None:
-        d = self.data
-        if d.ncon == 0:
-            return
-        arms = self.geom_arm[d.contact.geom[: d.ncon]]
-        self.arm_arm_contacts += int(np.count_nonzero(arms[:, 0] * arms[:, 1] == 2))
-
-    def _track_limits(self) -> None:
-        d = self.data
-        fingers = d.qpos[self._fingers]
-        over = max(float(np.max(fingers)) - self.config.gripper.stroke, -float(np.min(fingers)))
-        self.finger_limit = max(self.finger_limit, over)
-        speed = float(np.max(np.abs(d.qvel[self._dofs]) * self._inv_vel))
-        torque = float(np.max(np.abs(d.actuator_force[self._acts]) * self._inv_torque))
-        self.speed_ratio = max(self.speed_ratio, speed)
-        self.torque_ratio = max(self.torque_ratio, torque)
 
     def _track_carries(self) -> None:
         for a in c.ARMS:
@@ -241,6 +222,7 @@ class BuildSim:
         next_frame = 0.0
         retract = {a: False for a in c.ARMS}
         settle_until: float | None = None
+        monitor, ctrl = self.monitor, d.ctrl
         for a in c.ARMS:
             self.runners[a].load([])
         while True:
@@ -267,8 +249,7 @@ class BuildSim:
                 for a in c.ARMS:
                     if not self.runners[a].busy and self._task_of[a] is not self.scheduler.task(a):
                         self._assign(a)
-            q_prev = {a: self.ik.arm_q(a) for a in c.ARMS}
-            gap_prev = {a: self.runners[a].gap for a in c.ARMS}
+            ctrl_prev = ctrl.copy()
             for a in c.ARMS:
                 runner = self.runners[a]
                 if runner.busy and not self._held(a):
@@ -279,20 +260,21 @@ class BuildSim:
                             self.scheduler.complete(a)
                 self.ik.set_target(a, self.runners[a].pose)
             self.ik.step()
-            q_next = {a: self.ik.arm_q(a) for a in c.ARMS}
-            for k in range(1, n_sub + 1):
-                f = k / n_sub
-                for a in c.ARMS:
-                    d.ctrl[self.act[a]] = q_prev[a] + (q_next[a] - q_prev[a]) * f
-                    g0, g1 = gap_prev[a], self.runners[a].gap
-                    d.ctrl[self.grip_act[a]] = g0 + (g1 - g0) * f
+            ctrl_next = ctrl_prev.copy()
+            ctrl_next[self._ctrl_idx] = np.concatenate(
+                [np.append(self.ik.arm_q(a), self.runners[a].gap) for a in c.ARMS]
+            )
+            # Joint and gripper targets ramped across the physics steps: stepped targets jolt.
+            ramp = ctrl_prev + (ctrl_next - ctrl_prev) * self._ramp
+            for k in range(n_sub):
+                ctrl[:] = ramp[k]
                 mujoco.mj_step(m, d)
-                self.steps += 1
-                self._count_arm_contacts()
-                self._track_limits()
+                monitor.record(k)
                 if observer is not None and observe_dt is not None and d.time >= next_frame - 1e-9:
                     observer(m, d)
                     next_frame += observe_dt
+            self.steps += n_sub
+            monitor.reduce(n_sub)
             self._track_carries()
             if not np.all(np.isfinite(d.qpos)):
                 failure = f"simulation diverged (NaN in the state) at t = {d.time:.2f} s"
@@ -345,11 +327,11 @@ class BuildSim:
             dropped=set(self.dropped),
             sim_time=float(d.time),
             wall_time=wall,
-            arm_arm_contacts=self.arm_arm_contacts,
+            arm_arm_contacts=self.monitor.arm_arm_contacts,
             zone_violations=self.zone_violations,
-            finger_limit_mm=self.finger_limit * 1000.0,
-            joint_speed_ratio=self.speed_ratio,
-            joint_torque_ratio=self.torque_ratio,
+            finger_limit_mm=self.monitor.finger_excess * 1000.0,
+            joint_speed_ratio=self.monitor.speed_ratio,
+            joint_torque_ratio=self.monitor.torque_ratio,
             warnings=warnings,
             failure=failure,
             physics_steps=self.steps,
