@@ -3,7 +3,10 @@ import math
 import numpy as np
 import pytest
 
-from pyramid_sim.poses import Pose, grasp_yaw, symmetric_yaw_error, tcp_rotation, yaw_of
+from pyramid_sim.poses import (
+    Pose, grasp_yaw, symmetric_yaw_error, tcp_quaternion, tcp_rotation, yaw_of,
+)
+from pyramid_sim.results import quat_to_matrix
 from pyramid_sim.trajectory import min_jerk, plan_segment
 
 
@@ -13,6 +16,11 @@ def test_tcp_rotation_points_down_with_its_yaw():
     assert np.linalg.det(r) == pytest.approx(1.0)
     assert r[:, 2] == pytest.approx([0, 0, -1])
     assert yaw_of(r) == pytest.approx(0.7)
+
+
+@pytest.mark.parametrize("yaw", [0.0, 0.7, -2.5, math.pi])
+def test_tcp_quaternion_is_the_tcp_rotation(yaw):
+    assert np.allclose(quat_to_matrix(np.array(tcp_quaternion(yaw))), tcp_rotation(yaw))
 
 
 def test_grasp_yaw_is_the_brick_yaw_modulo_half_a_turn():

@@ -16,7 +16,7 @@ import numpy as np
 from . import constants as c
 from .config import SimConfig
 from .errors import UnreachableError
-from .poses import Pose, tcp_rotation, yaw_of
+from .poses import Pose, tcp_quaternion, yaw_of
 from .scene import build_spec
 
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
@@ -84,6 +84,7 @@ class DualArmIK:
                 dofs = arm_dof_addresses(self.model, arm)
                 self.max_dv[dofs] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
         self._task_list = [*self.tasks.values(), self.posture]
+        self._targets: dict[str, Pose] = {}
         self.velocity = np.zeros(self.model.nv)
         joint_ids = [self.model.joint(c.prefixed(a, j)).id for a in c.ARMS for j in c.ARM_JOINTS]
         self.limited_q = self.model.jnt_qposadr[joint_ids]
@@ -104,6 +105,7 @@ class DualArmIK:
         for arm in c.ARMS:
             self.tasks[arm].set_target(self.configuration.get_transform_frame_to_world(
                 c.prefixed(arm, c.TCP_SITE), "site"))
+            self._targets.pop(arm, None)
 
     def arm_q(self, arm: str) -> np.ndarray:
         return self.configuration.q[self.qadr[arm]].copy()
@@ -116,10 +118,12 @@ class DualArmIK:
         return Pose(float(x), float(y), float(z), yaw_of(site.xmat.reshape(3, 3)))
 
     def set_target(self, arm: str, pose: Pose) -> None:
-        target = mink.SE3.from_rotation_and_translation(
-            mink.SO3.from_matrix(tcp_rotation(pose.yaw)), pose.position
-        )
-        self.tasks[arm].set_target(target)
+        """Aim the arm's frame task at `pose` (called every control step; a repeat is free)."""
+        if self._targets.get(arm) == pose:
+            return
+        self._targets[arm] = pose
+        wxyz_xyz = np.array([*tcp_quaternion(pose.yaw), pose.x, pose.y, pose.z])
+        self.tasks[arm].set_target(mink.SE3(wxyz_xyz))
 
     def step(self) -> None:
         """One control step: solve for joint velocities and integrate them over dt.

@@ -17,7 +17,6 @@ from .errors import SimulationError
 from .monitor import StepMonitor
 from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
 from .plan import Plan
-from .poses import Pose, tcp_rotation
 from .primitives import StepKind, clear_pose, clear_steps, pick_steps, place_steps
 from .scene import build_scene
 from .scheduler import Action, LockstepScheduler, Task
@@ -108,7 +107,6 @@ class BuildSim:
             actuators=np.concatenate([self.act[a] for a in c.ARMS]),
             fingers=np.concatenate([self.finger_qadr[a] for a in c.ARMS]),
             finger_stroke=config.gripper.stroke,
-            substeps=config.substeps,
         )
         # Control vector layout: the arm joint targets then the gripper gap, per arm.
         self._ctrl_idx = np.concatenate(
@@ -269,12 +267,11 @@ class BuildSim:
             for k in range(n_sub):
                 ctrl[:] = ramp[k]
                 mujoco.mj_step(m, d)
-                monitor.record(k)
+                monitor.record()
                 if observer is not None and observe_dt is not None and d.time >= next_frame - 1e-9:
                     observer(m, d)
                     next_frame += observe_dt
             self.steps += n_sub
-            monitor.reduce(n_sub)
             self._track_carries()
             if not np.all(np.isfinite(d.qpos)):
                 failure = f"simulation diverged (NaN in the state) at t = {d.time:.2f} s"
@@ -285,6 +282,7 @@ class BuildSim:
             if d.time - self.last_progress > cfg.stall_time:
                 failure = self._stall_reason()
                 break
+        monitor.flush()
         wall = time.perf_counter() - start
         return self._result(failure, wall)
 
