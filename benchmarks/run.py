@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""Benchmark: bare physics, the headless build, IK, rendering and sweeps, in one run.
+
+    python benchmarks/run.py [--json PATH] [--layers N] [--frames N] [--sweep-builds N]
+
+Prints a table of every figure against its target; `--json` also writes the figures.
+Targets are reported, never asserted: these machines are too noisy for timed tests.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from pyramid_sim.cli import EXIT_USAGE, _Parser, _whole, check_writable_dir
+from pyramid_sim.errors import ConfigError
+from pyramid_sim.gl_backend import choose_gl_backend
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = _Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
+    parser.add_argument("--json", type=Path, metavar="PATH", help="also write the figures here")
+    parser.add_argument("--layers", type=_whole("layers", "1 to 5"), default=4,
+                        help="pyramid-even size built (default 4: 20 bricks)")
+    parser.add_argument("--frames", type=_whole("frames", "1 to 10000"), default=60,
+                        help="frames rendered per setting (default 60)")
+    parser.add_argument("--sweep-builds", type=_whole("sweep builds", "1 to 100"), default=2,
+                        help="builds per worker in the sweep figures (default 2)")
+    args = parser.parse_args(argv)
+    try:
+        choose_gl_backend()  # before mujoco is imported
+        from pyramid_sim.benchmark import BenchConfig, run_all, table
+        from pyramid_sim.results import write_json_atomic
+
+        bench = BenchConfig(layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds)
+        if args.json is not None:
+            check_writable_dir(args.json.parent)
+    except ConfigError as err:
+        print(f"benchmarks/run.py: error: {err}", file=sys.stderr)
+        return EXIT_USAGE
+    figures = run_all(bench, progress=lambda what: print(f"measuring: {what}", file=sys.stderr))
+    print(table(figures))
+    if args.json is not None:
+        write_json_atomic(args.json, figures)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

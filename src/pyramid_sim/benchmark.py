@@ -1,0 +1,262 @@
+"""Throughput figures of one machine, measured in one process and one run (benchmarks/run.py).
+
+Every rate is set against the bare physics of the same model measured in the same run, because
+these machines are noisy: two runs minutes apart differ by up to 2x in absolute speed.
+"""
+
+from __future__ import annotations
+
+import resource
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+import mujoco
+import numpy as np
+
+from .build import prepare
+from .config import SimConfig, VideoConfig, check_count
+from .results import result_document
+from .simulation import BuildSim
+from .structures import StructureSpec
+from .sweep_grid import RunSpec
+from .sweep_runner import RunResult, run_processes
+
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class BenchConfig:
+    """What to measure: the `pyramid-even` size, frames rendered per setting, builds per worker."""
+
+    layers: int = 4
+    frames: int = 60
+    sweep_builds: int = 2  # per worker
+    bare_seconds: float = 10.0  # simulated seconds of bare physics
+
+    def __post_init__(self) -> None:
+        check_count("layers", self.layers, 1, 5)
+        check_count("frames", self.frames, 1, 10_000)
+        check_count("sweep builds", self.sweep_builds, 1, 100)
+
+    @property
+    def structure(self) -> StructureSpec:
+        return StructureSpec("pyramid-even", layers=self.layers)
+
+
+@dataclass(frozen=True)
+class Target:
+    """A figure's target: `key` at least (or at most) `bound`."""
+
+    key: str
+    bound: float
+    at_least: bool
+    text: str
+
+    def met(self, figures: dict[str, Any]) -> bool:
+        value = figures[self.key]
+        return value >= self.bound if self.at_least else value <= self.bound
+
+
+TARGETS = (
+    Target("build_to_bare_ratio", 0.8, True, ">= 0.8"),
+    Target("build_real_time_factor", 20.0, True, ">= 20x"),
+    Target("bricks_per_hour_sim", 900.0, True, ">= 900"),
+    Target("max_slip_mm", 2.0, False, "<= 2 mm"),
+    Target("max_joint_speed_ratio", 1.0, False, "<= 1"),
+    Target("max_joint_torque_ratio", 1.0, False, "<= 1"),
+    Target("ik_solve_ms_median", 0.15, False, "< 0.15 ms"),
+    Target("video_ms_per_frame", 33.0, False, "< 33 ms"),
+    Target("sweep_scaling", 1.8, True, ">= 1.8"),
+)
+
+
+def bare_rate(config: SimConfig, spec: StructureSpec, seconds: float) -> float:
+    """Steps per second of `mj_step` alone on the build's own scene (both arms, table, magazine
+    of bricks) from the build's start state, controls held: the limit a build can approach.
+    One simulated second runs first, untimed, so bricks that settle fall asleep as in a build."""
+    sim = BuildSim(prepare(spec, config), config)
+    m, d = sim.model, sim.data
+    for _ in range(int(round(1.0 / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+    n = int(round(seconds / m.opt.timestep))
+    start = time.perf_counter()
+    for _ in range(n):
+        mujoco.mj_step(m, d)
+    return n / (time.perf_counter() - start)
+
+
+class _Recording:
+    """Every physics step's controls and every spawn of a build, to replay its physics alone."""
+
+    def __init__(self, sim: BuildSim) -> None:
+        self.ctrl: list[np.ndarray] = []
+        self.spawns: list[tuple[int, np.ndarray, np.ndarray]] = []
+        self.qpos0, self.qvel0, self.ctrl0 = sim.data.qpos.copy(), sim.data.qvel.copy(), sim.data.ctrl.copy()
+        spawn_next = sim.spawner.spawn_next
+
+        def spawn_and_note(data: mujoco.MjData) -> int:
+            slot = spawn_next(data)
+            self.spawns.append((len(self.ctrl), data.qpos.copy(), data.qvel.copy()))
+            return slot
+
+        sim.spawner.spawn_next = spawn_and_note  # type: ignore[method-assign]
+
+    def __call__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        self.ctrl.append(data.ctrl.copy())
+
+    def replay(self, model: mujoco.MjModel) -> tuple[float, np.ndarray]:
+        """Step the recorded controls on a fresh MjData: steps per second, final qpos."""
+        d = mujoco.MjData(model)
+        d.qpos[:], d.qvel[:], d.ctrl[:] = self.qpos0, self.qvel0, self.ctrl0
+        mujoco.mj_forward(model, d)
+        spawns = {i: (q, v) for i, q, v in self.spawns}
+        start = time.perf_counter()
+        for i, ctrl in enumerate(self.ctrl):
+            if i in spawns:
+                d.qpos[:], d.qvel[:] = spawns[i]
+            d.ctrl[:] = ctrl
+            mujoco.mj_step(model, d)
+        return len(self.ctrl) / (time.perf_counter() - start), d.qpos.copy()
+
+
+def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any], BuildSim]:
+    """One headless build, timed whole and per IK solve, then its physics replayed alone."""
+    sim = BuildSim(prepare(spec, config), config)
+    solve_times: list[float] = []
+    step = sim.ik.step
+
+    def timed_step() -> None:
+        t = time.perf_counter()
+        step()
+        solve_times.append(time.perf_counter() - t)
+
+    sim.ik.step = timed_step  # type: ignore[method-assign]
+    recording = _Recording(sim)
+    raw = sim.run(observer=recording, observe_dt=config.timestep)
+    peak_rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    doc = result_document(raw)
+    replay_rate, replay_qpos = recording.replay(sim.model)
+    ms = np.array(solve_times) * 1000.0
+    figures = {
+        "build_success": doc["success"],
+        "bricks_placed": doc["bricks_placed"],
+        "build_physics_steps": raw.physics_steps,
+        "build_steps_per_s": raw.physics_steps / raw.wall_time,
+        "build_real_time_factor": raw.sim_time / raw.wall_time,
+        "replay_steps_per_s": replay_rate,
+        "replay_matches_build": bool(np.array_equal(replay_qpos, sim.data.qpos)),
+        "ik_solves": len(ms),
+        "ik_solve_ms_median": float(np.median(ms)),
+        "ik_solve_ms_p99": float(np.percentile(ms, 99)),
+        "sim_s_per_brick": doc["sim_s_per_brick"],
+        "bricks_per_hour_sim": 3600.0 / doc["sim_s_per_brick"],
+        "max_slip_mm": doc["max_slip_mm"],
+        "max_joint_speed_ratio": doc["max_joint_speed_ratio"],
+        "max_joint_torque_ratio": doc["max_joint_torque_ratio"],
+        "peak_rss_mb": peak_rss_mb,
+    }
+    return figures, sim
+
+
+def video_figures(sim: BuildSim, frames: int) -> dict[str, float]:
+    """Render `frames` 640x480 frames of the finished build with and without shadows, and
+    encode them with the recorder's settings: ms per frame for each."""
+    from .video import Recorder
+
+    figures: dict[str, float] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for shadows in (True, False):
+            recorder = Recorder(sim.model, VideoConfig(shadows=shadows), Path(tmp) / "bench.mp4")
+            try:
+                recorder.render(sim.data)  # the first frame builds GL state: untimed
+                start = time.perf_counter()
+                images = [recorder.render(sim.data) for _ in range(frames)]
+                render_ms = (time.perf_counter() - start) * 1000.0 / frames
+                start = time.perf_counter()
+                for image in images:
+                    recorder.writer.append_data(image)
+                recorder.finish()
+                encode_ms = (time.perf_counter() - start) * 1000.0 / frames
+            except BaseException:
+                recorder.abort()
+                raise
+            figures["render_ms_per_frame_" + ("shadows" if shadows else "no_shadows")] = render_ms
+            if not shadows:
+                figures["encode_ms_per_frame"] = encode_ms
+    figures["video_ms_per_frame"] = (
+        figures["render_ms_per_frame_no_shadows"] + figures["encode_ms_per_frame"]
+    )
+    return figures
+
+
+def sweep_rate(spec: StructureSpec, workers: int, builds: int) -> tuple[float, int]:
+    """Builds per hour of wall time running `builds` builds on `workers` worker processes, as
+    `pyramid-sim sweep` does (process start and model compile included); and how many succeeded."""
+    runs = [RunSpec(spec, "both", (), seed, 0.0) for seed in range(builds)]
+    results: list[RunResult] = []
+    start = time.perf_counter()
+    run_processes(runs, workers, timeout=3600.0, on_result=results.append)
+    wall = time.perf_counter() - start
+    return builds * 3600.0 / wall, sum(bool(r.row["success"]) for r in results)
+
+
+def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str, Any]:
+    """Every figure of the benchmark, in one process."""
+    config = SimConfig()
+    spec = bench.structure
+    figures: dict[str, Any] = {"structure": f"pyramid-even layers={bench.layers}"}
+    progress("bare physics")
+    figures["bare_steps_per_s"] = bare_rate(config, spec, bench.bare_seconds)
+    progress("headless build")
+    build, sim = build_figures(config, spec)
+    figures.update(build)
+    figures["build_to_bare_ratio"] = figures["build_steps_per_s"] / figures["bare_steps_per_s"]
+    figures["build_to_replay_ratio"] = figures["build_steps_per_s"] / figures["replay_steps_per_s"]
+    progress("render and encode")
+    figures.update(video_figures(sim, bench.frames))
+    for workers in (1, 2):
+        progress(f"sweep, {workers} worker{'s' if workers > 1 else ''}")
+        rate, ok = sweep_rate(spec, workers, workers * bench.sweep_builds)
+        figures[f"sweep_builds_per_hour_{workers}"] = rate
+        figures[f"sweep_successes_{workers}"] = ok
+    figures["sweep_scaling"] = figures["sweep_builds_per_hour_2"] / figures["sweep_builds_per_hour_1"]
+    return figures
+
+
+ROWS = (
+    ("bare_steps_per_s", "bare mj_step, steps/s", "{:,.0f}"),
+    ("replay_steps_per_s", "the build's physics replayed alone, steps/s", "{:,.0f}"),
+    ("build_steps_per_s", "full headless build, steps/s", "{:,.0f}"),
+    ("build_to_bare_ratio", "build / bare", "{:.2f}"),
+    ("build_to_replay_ratio", "build / its own physics", "{:.2f}"),
+    ("build_real_time_factor", "build, times real time", "{:.1f}x"),
+    ("ik_solve_ms_median", "IK solve, both arms, median ms", "{:.3f}"),
+    ("ik_solve_ms_p99", "IK solve, both arms, p99 ms", "{:.3f}"),
+    ("sim_s_per_brick", "simulated s per brick", "{:.2f}"),
+    ("bricks_per_hour_sim", "bricks per hour of simulated time", "{:,.0f}"),
+    ("max_slip_mm", "max slip in the hand, mm", "{:.2f}"),
+    ("max_joint_speed_ratio", "max joint speed / limit", "{:.2f}"),
+    ("max_joint_torque_ratio", "max joint torque / limit", "{:.2f}"),
+    ("render_ms_per_frame_shadows", "render 640x480, shadows, ms/frame", "{:.1f}"),
+    ("render_ms_per_frame_no_shadows", "render 640x480, no shadows, ms/frame", "{:.1f}"),
+    ("encode_ms_per_frame", "encode H.264, ms/frame", "{:.1f}"),
+    ("video_ms_per_frame", "render + encode (default video), ms/frame", "{:.1f}"),
+    ("peak_rss_mb", "peak memory of a build, MB", "{:,.0f}"),
+    ("sweep_builds_per_hour_1", "sweep, 1 worker, builds/hour", "{:,.1f}"),
+    ("sweep_builds_per_hour_2", "sweep, 2 workers, builds/hour", "{:,.1f}"),
+    ("sweep_scaling", "sweep scaling, 2 workers / 1", "{:.2f}"),
+)
+
+
+def table(figures: dict[str, Any]) -> str:
+    """The figures as a Markdown table with each target and whether it is met."""
+    targets = {t.key: t for t in TARGETS}
+    lines = ["| figure | value | target | met |", "|---|---|---|---|"]
+    for key, label, fmt in ROWS:
+        target = targets.get(key)
+        met = "" if target is None else ("yes" if target.met(figures) else "**no**")
+        lines.append(f"| {label} | {fmt.format(figures[key])} | {target.text if target else ''} | {met} |")
+    return "\n".join(lines)
