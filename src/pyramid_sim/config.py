@@ -116,6 +116,7 @@ class MotionConfig:
     clear_height: float = 0.40  # m, z of the outer collision-clear pose
     clear_y: float = 0.62  # m, |y| of the outer collision-clear pose
     clear_x: float = 0.30  # m, x of the outer collision-clear pose
+    arm_min_distance: float = 0.05  # m the IK keeps between the arms' links (beyond the lockstep)
 
     def __post_init__(self) -> None:
         check_range("hover distance", self.hover, 0.02, 0.3)
@@ -125,6 +126,7 @@ class MotionConfig:
         check_range("turn rate", self.turn_rate, 0.0, 6.0, low_open=True)
         check_range("control dt", self.control_dt, 0.002, 0.05)
         check_range("settle before release", self.settle_before_release, 0.0, 2.0)
+        check_range("arm min distance", self.arm_min_distance, 0.0, 0.3)
 
 
 @dataclass(frozen=True)
@@ -140,6 +142,7 @@ class SimConfig:
     max_sim_time: float = 600.0  # s, a build still running then has failed
     stall_time: float = 60.0  # s, a build in which no arm finishes a move for this long has failed
     seed: int = 0  # of the spawn jitter: the only randomness in a build
+    spare_bricks: int = 3  # in the magazine beyond the structure's, to replace dropped ones
 
     def __post_init__(self) -> None:
         check_range("timestep", self.timestep, 0.0005, 0.004)
@@ -147,6 +150,7 @@ class SimConfig:
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
         check_range("stall time", self.stall_time, 1.0, 36000.0)
         check_count("seed", self.seed, 0, 2**32 - 1)
+        check_count("spare bricks", self.spare_bricks, 0, 20)
         steps = self.motion.control_dt / self.timestep
         if abs(steps - round(steps)) > 1e-9:
             raise ConfigError(

@@ -14,6 +14,7 @@ import mujoco
 import numpy as np
 
 from . import constants as c
+from .clearance import IK_GUARDED_BODIES, arm_geoms
 from .config import SimConfig
 from .errors import UnreachableError
 from .poses import Pose, tcp_quaternion, yaw_of
@@ -22,11 +23,36 @@ from .scene import build_spec
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
 # as much as the solve itself (0.12 of 0.45 ms a step, measured in a build).
 NO_LOWER_BOUND = -1e30
+COLLISION_LOOKAHEAD = 0.25  # m beyond the minimum arm distance at which the limit takes effect
+ARM_BRAKING = 4.0  # m/s^2: the arms may close on each other no faster than they can stop in time
 VELOCITY_MARGIN = 0.9
 # Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
 # for the whole error every 10 ms; with the acceleration clip below that over-corrects and rings
 # (an arm reaching across to the far side rang +-20 mm over the spawn spot); 0.5 settles.
 FRAME_GAIN = 0.5
+
+
+class _BrakingLimit(mink.Limit):
+    """mink's collision avoidance limit, reshaped so the arms can always stop in time.
+
+    mink bounds each step's approach by a share of the gap left (gain x gap / dt). Our IK then
+    clips each step's change of velocity to the Panda's accelerations, which can overrule a late
+    stop: with both hands sent to one point the arms met 50-80 mm deep. Here the approach speed
+    is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
+    modest `ARM_BRAKING`; so the stop is never sharper than the clip allows (the same test: the
+    links stay 50 mm apart)."""
+
+    def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
+        # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
+        self.limit = mink.CollisionAvoidanceLimit(
+            model, pairs, gain=1.0, minimum_distance_from_collisions=minimum,
+            collision_detection_distance=minimum + COLLISION_LOOKAHEAD,
+        )
+
+    def compute_qp_inequalities(self, configuration: mink.Configuration, dt: float):
+        constraint = self.limit.compute_qp_inequalities(configuration, 1.0)
+        gap = np.maximum(constraint.h, 0.0)
+        return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
 
 
 def arm_qpos_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
@@ -74,10 +100,15 @@ class DualArmIK:
             for arm in c.ARMS
             for j, v in zip(c.ARM_JOINTS, c.JOINT_VELOCITY_LIMITS)
         }
+        guarded = [arm_geoms(self.model, arm, IK_GUARDED_BODIES) for arm in c.ARMS]
         self.limits = [
             mink.ConfigurationLimit(self.model),
             mink.VelocityLimit(self.model, velocities),
+            # Collision safety beyond the scheduler: the QP will not close the gap between the
+            # arms' links below the minimum distance, whatever the targets ask.
+            _BrakingLimit(self.model, [tuple(guarded)], config.motion.arm_min_distance),
         ]
+        self._collision_rows = self.limits[-1].limit.max_num_contacts  # the QP's last rows
         self.max_dv = np.full(self.model.nv, np.inf)
         if limit_acceleration:
             for arm in c.ARMS:
@@ -128,11 +159,10 @@ class DualArmIK:
     def step(self) -> None:
         """One control step: solve for joint velocities and integrate them over dt.
 
-        The change of velocity is clipped to the Panda's acceleration limits: the QP has none,
-        and a sudden reversal (near the shoulder singularity) would shake the brick loose.
+        The change of velocity stays within the Panda's acceleration limits (see `_solve`): a
+        sudden reversal (near the shoulder singularity) would shake the brick loose.
         """
         velocity = self._solve()
-        velocity = np.clip(velocity, self.velocity - self.max_dv, self.velocity + self.max_dv)
         q_next = self.configuration.integrate(velocity, self.dt)
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
         q_next[self.limited_q] = np.clip(
@@ -142,18 +172,37 @@ class DualArmIK:
         self.configuration.update(q_next)
 
     def _solve(self) -> np.ndarray:
-        """Joint velocities from mink's QP for the tasks and limits; NoSolutionFound if none."""
+        """Joint velocities from mink's QP for the tasks and limits.
+
+        Each joint's change of velocity is bounded by its acceleration limit inside the QP, so
+        a stop short of the other arm is planned within what the arm can do. When that makes
+        the QP infeasible (an approach too fast to brake in time, or braking at a joint limit)
+        it is solved without the bounds and its answer clipped to them, unless the clipped
+        answer would close on the other arm: then the collision limit wins over smoothness.
+        NoSolutionFound if the QP has no solution even so."""
         problem = mink.build_ik(
             self.configuration, self._task_list, self.dt, self.damping, self.limits
         )
-        h = problem.h
-        x, _, exitflag, _ = daqp.solve(
-            problem.P, problem.q, problem.G, h, np.full(h.size, NO_LOWER_BOUND),
-            np.zeros(h.size, dtype=c_int),
+        G, h = problem.G, problem.h
+        free = np.full(h.size, NO_LOWER_BOUND)
+        low = np.maximum((self.velocity - self.max_dv) * self.dt, NO_LOWER_BOUND)
+        high = np.minimum((self.velocity + self.max_dv) * self.dt, -NO_LOWER_BOUND)
+        step, _, exitflag, _ = daqp.solve(
+            problem.P, problem.q, G, np.concatenate([high, h]), np.concatenate([low, free]),
+            np.zeros(h.size + low.size, dtype=c_int),
+        )
+        if exitflag > 0:
+            return step / self.dt
+        step, _, exitflag, _ = daqp.solve(
+            problem.P, problem.q, G, h, free, np.zeros(h.size, dtype=c_int)
         )
         if exitflag <= 0:
             raise mink.NoSolutionFound("daqp")
-        return x / self.dt
+        clipped = np.clip(step, low, high)
+        rows = slice(h.size - self._collision_rows, h.size)
+        if np.all(G[rows] @ clipped <= h[rows] + 1e-9):
+            return clipped / self.dt
+        return step / self.dt
 
     def error(self, arm: str) -> tuple[float, float]:
         """Position (m) and orientation (rad) error of the arm's frame task."""

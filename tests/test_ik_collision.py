@@ -1,0 +1,40 @@
+"""Collision safety beyond the scheduler: the IK keeps the arms apart whatever it is asked."""
+
+import mujoco
+import numpy as np
+import pytest
+
+from pyramid_sim import constants as c
+from pyramid_sim.clearance import IK_GUARDED_BODIES, arm_geoms
+from pyramid_sim.config import MotionConfig, SimConfig
+from pyramid_sim.ik import DualArmIK
+from pyramid_sim.poses import Pose
+from pyramid_sim.primitives import clear_pose
+
+
+def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> float:
+    config = SimConfig(motion=MotionConfig(arm_min_distance=min_distance))
+    ik = DualArmIK(config)
+    for arm in c.ARMS:
+        ik.solve(arm, clear_pose(arm, config.motion))
+    model, data = ik.model, ik.configuration.data
+    pairs = [(a, b) for a in arm_geoms(model, "left", IK_GUARDED_BODIES)
+             for b in arm_geoms(model, "right", IK_GUARDED_BODIES)]
+    fromto = np.zeros(6)
+    for arm in c.ARMS:
+        ik.set_target(arm, Pose(0.5, 0.0, 0.3, 0.0))
+    closest = np.inf
+    for _ in range(300):
+        ik.step()
+        closest = min(closest, *(mujoco.mj_geomDistance(model, data, a, b, 1.0, fromto)
+                                 for a, b in pairs))
+    return closest
+
+
+@pytest.mark.parametrize("min_distance", [0.05, 0.02])
+def test_the_ik_keeps_the_arms_apart(min_distance):
+    assert _closest_approach_when_both_hands_aim_at_one_point(min_distance) >= min_distance - 1e-3
+
+
+def test_without_a_margin_the_arms_would_meet():
+    assert _closest_approach_when_both_hands_aim_at_one_point(0.0) < 0.005
