@@ -72,18 +72,29 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     assert result["bricks_placed"] == 0
 
 
-def test_a_brick_left_on_the_spawn_spot_stalls_the_build_with_its_reason():
-    """A brick the grip cannot lift stays on the spot; the next pick waits for it, the build
-    ends at the stall limit and says why instead of running to the time limit."""
+def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reason():
+    """A brick knocked out of the hand onto the table beside the spawn spot blocks the spare
+    that would replace it; the next pick waits for the spot, the build ends at the stall limit
+    and says why (naming the drop) instead of running to the time limit."""
     from dataclasses import replace
 
-    from pyramid_sim.build import run_build
+    from pyramid_sim.results import result_document
+    from pyramid_sim.simulation import BuildSim
 
-    base = SimConfig()
-    config = replace(base, gripper=replace(base.gripper, force=1.0), stall_time=15.0)
-    result = run_build(prepare(StructureSpec("pyramid", layers=2), config), config)
+    config = replace(SimConfig(), stall_time=15.0)
+    sim = BuildSim(prepare(StructureSpec("pyramid", layers=2), config), config)
+
+    def knock(model, data):
+        carry, step = sim.carry["left"], sim.runners["left"].current
+        if carry is not None and step is not None and step.name == "clear":
+            q, v = sim.spawner.qadr[carry.slot], sim.spawner.dadr[carry.slot]
+            data.qpos[q : q + 3] = (0.49, -0.12, 0.111)  # on the table, 13 cm from the spot
+            data.qvel[v : v + 6] = 0.0
+
+    result = result_document(sim.run(observer=knock, observe_dt=config.timestep))
     assert not result["success"]
-    assert "stalled" in result["failure_reason"] and "spawn spot" in result["failure_reason"]
+    reason = result["failure_reason"]
+    assert "stalled" in reason and "spawn spot" in reason and "brick 0 slipped out" in reason
     assert result["sim_time_s"] < 60.0
 
 

@@ -70,3 +70,19 @@ def test_never_two_workers_in_one_phase():
     for _, left, right in drive(s):
         workers = [t for t in (left, right) if t[0] in (Action.PICK, Action.PLACE)]
         assert len(workers) == 1
+
+
+def test_a_dropped_brick_is_picked_again_at_the_arms_next_pick():
+    scheduler = LockstepScheduler(left=[0, 2], right=[1, 3])
+    scheduler.report_zone("left", True)
+    scheduler.report_zone("right", True)
+    for arm in ("left", "right"):  # phase 1: left picks 0
+        scheduler.complete(arm)
+    assert scheduler.phase == 2
+    scheduler.dropped("left", 0)  # lost while the left arm waits at its clear pose
+    assert scheduler.task("left").action is Action.CLEAR
+    seen = drive(scheduler)
+    left_work = [s[1] for s in seen if s[1][0] is not Action.CLEAR]
+    assert left_work == [(Action.PICK, 0), (Action.PLACE, 0), (Action.PICK, 2), (Action.PLACE, 2)]
+    right_work = [s[2] for s in seen if s[2][0] is not Action.CLEAR]
+    assert right_work == [(Action.PICK, 1), (Action.PLACE, 1), (Action.PICK, 3), (Action.PLACE, 3)]

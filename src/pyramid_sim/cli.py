@@ -237,11 +237,13 @@ def _cmd_build(args: argparse.Namespace) -> int:
             on_frame=lambda n: frames.update(1), snapshot=snapshot,
         )
     write_json_atomic(args.out / "result.json", document)
+    worst = document["worst_error_xy_mm"]
     print(
-        f"{document['bricks_placed']}/{document['bricks_total']} bricks in place, "
-        f"worst xy error {document['worst_error_xy_mm']:.2f} mm, max slip "
+        f"{document['bricks_placed']}/{document['bricks_total']} bricks in place, worst xy "
+        f"error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, max slip "
         f"{document['max_slip_mm']} mm, {document['sim_s_per_brick']} sim s/brick, "
-        f"{document['real_time_factor']}x real time -> {args.out / 'result.json'}"
+        f"{document['real_time_factor']}x real time, {document['drops']} drops -> "
+        f"{args.out / 'result.json'}"
     )
     if not document["success"]:
         print(f"build failed: {document['failure_reason']}", file=sys.stderr)

@@ -48,10 +48,11 @@ def brick_report(raw: RawResult, tol: Tolerances) -> list[dict[str, Any]]:
             "layer": b.target.layer,
             "target": {"position": [round(v, 6) for v in (target.x, target.y, target.z)], "yaw": round(target.yaw, 6)},
             "dropped": b.index in raw.dropped,
+            "drops": sum(d.brick == b.index for d in raw.drops),
             "slip_mm": round(raw.slip_mm[b.index], 3) if b.index in raw.slip_mm else None,
         }
         slot = raw.slot_of.get(b.index)
-        if slot is None:
+        if slot is None or not np.all(np.isfinite(raw.final_pos[slot])):
             row.update(final=None, placed=False)
             rows.append(row)
             continue
@@ -65,9 +66,9 @@ def brick_report(raw: RawResult, tol: Tolerances) -> list[dict[str, Any]]:
             yaw_error_deg=round(math.degrees(symmetric_yaw_error(yaw_of(rot), target.yaw)), 3),
             tilt_deg=round(math.degrees(tilt_of(rot)), 3),
         )
+        row["knocked_off"] = any(k.slot == slot for k in raw.knocks)
         row["placed"] = (
-            not row["dropped"]
-            and row["error_xy_mm"] <= tol.xy_mm
+            row["error_xy_mm"] <= tol.xy_mm
             and abs(row["error_z_mm"]) <= tol.z_mm
             and row["yaw_error_deg"] <= tol.yaw_deg
             and row["tilt_deg"] <= tol.tilt_deg
@@ -83,22 +84,24 @@ def result_document(raw: RawResult, tol: Tolerances = Tolerances()) -> dict[str,
     n = len(bricks)
     slips = [v for v in raw.slip_mm.values() if math.isfinite(v)]
     over_speed = raw.joint_speed_ratio > 1.0
-    success = (
-        raw.failure is None and placed == n and not raw.dropped and raw.arm_arm_contacts == 0
-        and not over_speed
-    )
+    # A drop the build recovered from does not fail it: the structure is judged as it stands.
+    success = raw.failure is None and placed == n and raw.arm_arm_contacts == 0 and not over_speed
     reason = raw.failure
     if reason is None and not success:
         missing = [b["index"] for b in bricks if not b["placed"]]
         problems = [f"{n - placed} of {n} bricks not in place (build order {missing})"] if missing else []
         if raw.dropped:
             problems.append(f"bricks dropped (build order {sorted(raw.dropped)})")
+        if raw.knocks:
+            problems.append(f"bricks knocked off (build order {[k.brick for k in raw.knocks]})")
         if raw.arm_arm_contacts:
             problems.append(f"{raw.arm_arm_contacts} arm-arm contacts")
         if over_speed:
             problems.append(f"a joint moved at {raw.joint_speed_ratio:.2f} of its velocity limit")
         reason = "; ".join(problems)
-    worst = max((b.get("error_xy_mm", math.inf) for b in bricks), default=0.0)
+    errors = [b.get("error_xy_mm") for b in bricks]
+    # None when a brick never reached the structure: result.json stays strict JSON (no Infinity).
+    worst = None if None in errors else max(errors, default=0.0)
     return {
         "success": success,
         "failure_reason": reason,
@@ -114,7 +117,16 @@ def result_document(raw: RawResult, tol: Tolerances = Tolerances()) -> dict[str,
         "real_time_factor": round(raw.sim_time / raw.wall_time, 3) if raw.wall_time > 0 else None,
         "sim_s_per_brick": round(raw.sim_time / n, 3) if n else None,
         "max_slip_mm": round(max(slips), 3) if slips else None,
-        "drops": len(raw.dropped),
+        "drops": len(raw.drops),
+        "recoveries": sum(
+            any(b["index"] == d.brick and b["placed"] for b in bricks) for d in raw.drops
+        ),
+        "drop_events": [d.as_json() for d in raw.drops],
+        "knocked_off": [k.as_json() for k in raw.knocks],
+        "closest_arm_approach_mm": round(raw.closest_arm_m * 1000.0, 1),
+        "closest_arm_approach_t_s": (
+            round(raw.closest_arm_time, 3) if raw.closest_arm_time is not None else None
+        ),
         "arm_arm_contacts": raw.arm_arm_contacts,
         "shared_zone_violations": raw.zone_violations,
         "finger_limit_excess_mm": round(raw.finger_limit_mm, 4),

@@ -99,6 +99,15 @@ class LockstepScheduler:
         if self._done >= set(self._tasks):
             self._advance()
 
+    def dropped(self, arm: str, brick: int) -> None:
+        """The arm lost `brick` between grip and release: the brick goes back to the front of
+        the arm's queue (its next pick fetches a new one) and the arm's task in this phase
+        becomes a clear, so the phase still ends at the barrier."""
+        self._holding[arm] = None
+        self._queues[arm].insert(0, brick)
+        if arm in self._tasks:
+            self._tasks[arm] = Task(arm, Action.CLEAR)
+
     def _advance(self) -> None:
         """Move to the next phase that has work, skipping phases whose working arm has none."""
         for _ in range(len(PHASES)):

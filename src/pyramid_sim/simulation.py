@@ -14,6 +14,10 @@ from . import constants as c
 from .arm_runner import ArmRunner
 from .config import SimConfig
 from .errors import SimulationError
+from .clearance import ArmClearance
+from .incidents import (
+    DROP_DISTANCE, MAX_DROPS_PER_BRICK, Drop, Knock, KnockWatch, grip_diagnosis,
+)
 from .monitor import StepMonitor
 from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
 from .plan import Plan
@@ -23,7 +27,6 @@ from .scheduler import Action, LockstepScheduler, Task
 from .spawner import Spawner
 from .zone import shared_zone
 
-DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 ZONE_BODIES = ("panda_hand", "panda_link6", "panda_link4")
 Observer = Callable[[mujoco.MjModel, mujoco.MjData], None]
 
@@ -47,7 +50,8 @@ class RawResult:
     final_pos: np.ndarray
     final_quat: np.ndarray
     slip_mm: dict[int, float]
-    dropped: set[int]
+    drops: list[Drop]
+    knocks: list[Knock]
     sim_time: float
     wall_time: float
     arm_arm_contacts: int
@@ -57,17 +61,25 @@ class RawResult:
     joint_torque_ratio: float
     warnings: dict[str, int]
     failure: str | None
+    closest_arm_m: float
+    closest_arm_time: float | None
     physics_steps: int = 0
     timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def dropped(self) -> set[int]:
+        """Build-order indices of the bricks that were dropped at least once."""
+        return {d.brick for d in self.drops}
 
 
 class BuildSim:
     """One build of a plan in a freshly compiled scene."""
 
-    def __init__(self, plan: Plan, config: SimConfig, spare_bricks: int = 0) -> None:
+    def __init__(self, plan: Plan, config: SimConfig) -> None:
         self.plan = plan
         self.config = config
-        scene = build_scene(config, len(plan.bricks) + spare_bricks)
+        # Spare bricks replace dropped ones that cannot be picked again.
+        scene = build_scene(config, len(plan.bricks) + config.spare_bricks)
         self.model = scene.model
         self.data = mujoco.MjData(self.model)
         self.ik = DualArmIK(config)
@@ -97,7 +109,12 @@ class BuildSim:
         self.carry: dict[str, Carry | None] = {a: None for a in c.ARMS}
         self.slot_of: dict[int, int] = {}
         self.slip_mm: dict[int, float] = {}
-        self.dropped: set[int] = set()
+        self.drops: list[Drop] = []
+        self.knocks: list[Knock] = []
+        self.knock_watch = KnockWatch()
+        self.clearance = ArmClearance(m, self.data)
+        self._warnings = self.data.warning.number  # a view: counts, updated by MuJoCo
+        self._failure: str | None = None  # set by bookkeeping that must stop the build
         self.placed = 0
         self.zone_violations = 0
         self.steps = 0
@@ -154,8 +171,47 @@ class BuildSim:
                 continue
             slip = float(np.linalg.norm(self.brick_in_tcp(a, carry.slot) - carry.offset))
             carry.max_slip = max(carry.max_slip, slip)
-            if slip > DROP_DISTANCE and carry.index not in self.dropped:
-                self.dropped.add(carry.index)
+            if slip > DROP_DISTANCE:
+                self._drop(a, carry, step.name if step is not None else "idle")
+
+    def _drop(self, arm: str, carry: Carry, step: str) -> None:
+        """A brick left the hand: record it, send the arm to clear with its fingers open and
+        put the brick back in its queue. A brick that fell back onto the spawn spot is picked
+        again; one that fell elsewhere is replaced by a spare. The third drop of one brick
+        stops the build, saying why."""
+        d = self.data
+        on_spot = self.spawner.rests_on_spot(d, carry.slot)
+        pos = tuple(float(v) for v in d.xpos[self.spawner.body[carry.slot]])
+        drop = Drop(carry.index, arm, carry.slot, float(d.time), pos, step, on_spot)
+        self.drops.append(drop)
+        self.carry[arm] = None
+        self.slot_of.pop(carry.index, None)
+        if sum(e.brick == carry.index for e in self.drops) >= MAX_DROPS_PER_BRICK:
+            self._failure = (
+                f"brick {carry.index} dropped {MAX_DROPS_PER_BRICK} times; last, {drop.describe()}: "
+                f"{grip_diagnosis(self.config)}"
+            )
+            return
+        if on_spot:
+            self.spawner.put_back(carry.slot)
+        runner = self.runners[arm]
+        runner.gap = runner.open_gap
+        runner.load(clear_steps(arm, self.config.motion))
+        self.scheduler.dropped(arm, carry.index)
+        self._task_of[arm] = self.scheduler.task(arm)
+
+    def _check_incidents(self) -> None:
+        """Once per control step: placed bricks knocked off, MuJoCo's warnings, the arms'
+        closest approach."""
+        d = self.data
+        self.knocks.extend(self.knock_watch.check(d.xpos, float(d.time)))
+        self.clearance.update()
+        if self._warnings.any():  # counts only grow: none raised since the last step is missed
+            raised = [mujoco.mjtWarning(i).name for i in np.flatnonzero(self._warnings)]
+            self._failure = (
+                f"MuJoCo warning {', '.join(raised)} at t = {d.time:.3f} s: the physics went "
+                "wrong (a diverging or overfull step), so the build was stopped"
+            )
 
     # --- control ------------------------------------------------------------------------
     def _assign(self, arm: str) -> None:
@@ -197,6 +253,10 @@ class BuildSim:
             self.slot_of[task.brick] = slot
             self.carry[arm] = Carry(slot, task.brick, self.brick_in_tcp(arm, slot).copy())
         elif step_kind is StepKind.RELEASE:
+            assert task is not None and task.brick is not None
+            slot = self.slot_of[task.brick]
+            body = self.spawner.body[slot]
+            self.knock_watch.placed(task.brick, slot, body, self.data.xpos[body].copy())
             self.placed += 1
             if self.on_placed is not None:
                 self.on_placed(self.placed)
@@ -273,6 +333,10 @@ class BuildSim:
                     next_frame += observe_dt
             self.steps += n_sub
             self._track_carries()
+            self._check_incidents()
+            if self._failure is not None:
+                failure = self._failure
+                break
             if not np.all(np.isfinite(d.qpos)):
                 failure = f"simulation diverged (NaN in the state) at t = {d.time:.2f} s"
                 break
@@ -296,6 +360,10 @@ class BuildSim:
                 cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
             else:
                 cause = f"{a} arm waiting for the shared zone"
+        if self.drops:
+            cause += f"; earlier, {self.drops[-1].describe()}"
+            if self.spawner.remaining == 0 and self._needs_brick():
+                cause += f" (no spare brick left of {self.config.spare_bricks})"
         return (
             f"stalled at t = {self.data.time:.1f} s: no arm finished a move for "
             f"{self.config.stall_time:g} s; {cause}"
@@ -322,7 +390,8 @@ class BuildSim:
             final_pos=pos,
             final_quat=quat,
             slip_mm=dict(self.slip_mm),
-            dropped=set(self.dropped),
+            drops=list(self.drops),
+            knocks=list(self.knocks),
             sim_time=float(d.time),
             wall_time=wall,
             arm_arm_contacts=self.monitor.arm_arm_contacts,
@@ -332,5 +401,7 @@ class BuildSim:
             joint_torque_ratio=self.monitor.torque_ratio,
             warnings=warnings,
             failure=failure,
+            closest_arm_m=self.clearance.closest,
+            closest_arm_time=self.clearance.closest_time,
             physics_steps=self.steps,
         )

@@ -3,11 +3,17 @@ previous one has been taken away (MuJoCo cannot add bodies without recompiling).
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import numpy as np
 
 from . import constants as c
-from .poses import Pose
+from .poses import Pose, symmetric_yaw_error
+
+ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
+ON_SPOT_Z = 0.003  # m
+ON_SPOT_ANGLE = math.radians(3.0)  # tilt and turn
 
 
 class Spawner:
@@ -50,6 +56,24 @@ class Spawner:
         centre = self.spawn.position
         bricks = (data.xpos[b] for b in self.body[: self.next_slot])
         return all(np.linalg.norm(p - centre) > self.clear_radius for p in (*bricks, *points))
+
+    def rests_on_spot(self, data: mujoco.MjData, slot: int) -> bool:
+        """Whether the brick in `slot` lies on the spot as spawned (a dropped brick that fell
+        back where it was picked can simply be picked again)."""
+        body = self.body[slot]
+        offset = data.xpos[body] - self.spawn.position
+        rot = data.xmat[body].reshape(3, 3)
+        turn = symmetric_yaw_error(math.atan2(rot[1, 0], rot[0, 0]), self.spawn.yaw)
+        return bool(
+            math.hypot(offset[0], offset[1]) <= self.jitter * math.sqrt(2) + ON_SPOT_XY
+            and abs(offset[2]) <= ON_SPOT_Z
+            and rot[2, 2] >= math.cos(ON_SPOT_ANGLE)
+            and turn <= ON_SPOT_ANGLE
+        )
+
+    def put_back(self, slot: int) -> None:
+        """The brick in `slot` lies on the spot again: it is the one to pick next."""
+        self.current = slot
 
     def spawn_next(self, data: mujoco.MjData) -> int:
         """Teleport the next parked brick onto the spot, at rest; returns its slot."""

@@ -1,0 +1,127 @@
+"""Reliability: drops and knocks are detected, reported and recovered from; a grip that cannot
+hold ends with which brick, where and why; a diverging step stops the build; the same command
+gives the same result twice; a refused command leaves existing results alone."""
+
+import json
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from pyramid_sim.build import prepare
+from pyramid_sim.cli import main
+from pyramid_sim.config import SimConfig
+from pyramid_sim.results import result_document
+from pyramid_sim.simulation import BuildSim
+from pyramid_sim.structures import StructureSpec
+
+FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of everyone's way
+
+pytestmark = pytest.mark.physics
+
+
+def _two_brick_build(config: SimConfig = SimConfig()) -> BuildSim:
+    return BuildSim(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+
+
+def _teleport(sim: BuildSim, data, slot: int, position: tuple[float, float, float]) -> None:
+    q, v = sim.spawner.qadr[slot], sim.spawner.dadr[slot]
+    data.qpos[q : q + 3] = position
+    data.qvel[v : v + 6] = 0.0
+
+
+def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed():
+    sim = _two_brick_build()
+    knocked = []
+
+    def knock(model, data):  # once, while the left arm carries its brick out to its clear pose
+        carry, step = sim.carry["left"], sim.runners["left"].current
+        if not knocked and carry is not None and step is not None and step.name == "clear":
+            _teleport(sim, data, carry.slot, FLOOR_AWAY)
+            knocked.append(carry.slot)
+
+    doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
+    assert knocked == [0]
+    assert doc["success"], doc["failure_reason"]
+    assert doc["bricks_placed"] == 2 and doc["drops"] == 1 and doc["recoveries"] == 1
+    (drop,) = doc["drop_events"]
+    assert (drop["brick"], drop["arm"], drop["slot"], drop["step"]) == (0, "left", 0, "clear")
+    assert drop["on_spot"] is False and drop["position"][2] < 0  # where it was knocked to
+    first = doc["bricks"][0]
+    assert first["dropped"] and first["drops"] == 1 and first["placed"]
+    assert first["error_xy_mm"] < 5.0  # built with a spare brick
+    assert doc["knocked_off"] == []
+    json.dumps(doc, allow_nan=False)
+
+
+def test_a_brick_knocked_off_the_structure_is_reported():
+    sim = _two_brick_build()
+    knocked = []
+
+    def knock(model, data):  # the first placed brick, pushed off once the second is picked
+        if not knocked and sim.knock_watch.slots and sim.carry["right"] is not None:
+            _teleport(sim, data, sim.knock_watch.slots[0], FLOOR_AWAY)
+            knocked.append(data.time)
+
+    doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
+    assert knocked
+    assert not doc["success"] and "knocked off" in doc["failure_reason"]
+    (knock_event,) = doc["knocked_off"]
+    assert knock_event["brick"] == 0 and knock_event["moved_mm"] > 500
+    assert doc["bricks"][0]["knocked_off"] and not doc["bricks"][0]["placed"]
+    assert doc["bricks"][1]["placed"]
+
+
+def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_path):
+    out = tmp_path / "heavy"
+    code = main(["build", "--structure", "pyramid-even", "--layers", "1", "--brick-mass", "5",
+                 "--quiet", "--out", str(out)])
+    doc = json.loads((out / "result.json").read_text())
+    assert code == 1 and not doc["success"]
+    reason = doc["failure_reason"]
+    assert "brick 0 dropped 3 times" in reason and "during 'retract'" in reason
+    assert "cannot carry the brick's weight (49.1 N at 5 kg)" in reason
+    assert doc["sim_time_s"] < 60  # stopped at the third drop, not at the stall or time limit
+    assert all(e["on_spot"] for e in doc["drop_events"][:-1])  # picked again where it fell
+
+
+def test_a_diverging_step_stops_the_build_at_once_naming_the_warning(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to MUJOCO_LOG.TXT in the cwd
+    sim = _two_brick_build()
+
+    def poison(model, data):
+        if abs(data.time - 1.0) < 1e-9:
+            data.qvel[sim.spawner.dadr[3]] = np.nan
+
+    doc = result_document(sim.run(observer=poison, observe_dt=sim.config.timestep))
+    assert not doc["success"]
+    assert "MuJoCo warning" in doc["failure_reason"] and "mjWARN_BADQACC" in doc["failure_reason"]
+    assert 1.0 < doc["sim_time_s"] <= 1.0 + sim.config.motion.control_dt + 1e-9
+    assert doc["mujoco_warnings"]["mjWARN_BADQACC"] >= 1
+    json.dumps(doc, allow_nan=False)  # no NaN or Infinity leaks into result.json
+
+
+TIMINGS = ("wall_time_s", "real_time_factor")
+
+
+def test_the_same_command_twice_gives_identical_results(tmp_path):
+    docs = []
+    for run in ("a", "b"):
+        args = ["build", "--structure", "pyramid", "--layers", "2", "--spawn-jitter", "2",
+                "--seed", "7", "--quiet", "--out", str(tmp_path / run)]
+        main(args)
+        doc = json.loads((tmp_path / run / "result.json").read_text())
+        docs.append({k: v for k, v in doc.items() if k not in TIMINGS})
+    assert docs[0]["bricks_placed"] == 3
+    assert docs[0] == docs[1]  # every final pose to the last digit written, and every count
+
+
+def test_a_refused_command_leaves_an_earlier_result_untouched(tmp_path, refused):
+    out = tmp_path / "run"
+    out.mkdir()
+    earlier = out / "result.json"
+    earlier.write_text('{"earlier": true}\n')
+    refused(["build", "--layers", "0", "--out", str(out)])
+    refused(["build", "--friction", "nan", "--out", str(out), "--video", str(out / "v.mp4")])
+    assert earlier.read_text() == '{"earlier": true}\n'
+    assert sorted(p.name for p in out.iterdir()) == ["result.json"]
