@@ -13,6 +13,7 @@ from .ik import DualArmIK
 from .plan import Plan, make_plan
 from .poses import Pose
 from .primitives import clear_pose, pick_steps, place_steps
+from .scheduler import other
 from .structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
 
 
@@ -43,13 +44,17 @@ class ReachChecker:
         self.config = config
         self.ik = DualArmIK(config, limit_acceleration=False)
         self._known: dict[tuple[str, Pose], str | None] = {}
+        home = np.array(c.HOME_QPOS)
+        self.ik.reset(home, home)
+        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.motion)) for a in c.ARMS}
 
     def why_not(self, arm: str, pose: Pose) -> str | None:
-        """None if the arm reaches the pose from home, else why not."""
+        """None if the arm reaches the pose from home, else why not. The other arm waits at its
+        clear pose, as in a build, where the IK keeps the arms apart."""
         key = (arm, pose)
         if key not in self._known:
-            home = np.array(c.HOME_QPOS)
-            self.ik.reset(home, home)
+            start = {arm: np.array(c.HOME_QPOS), other(arm): self._clear_q[other(arm)]}
+            self.ik.reset(start["left"], start["right"])
             try:
                 self.ik.solve(arm, pose)
                 self._known[key] = None
