@@ -14,10 +14,12 @@ import numpy as np
 
 from . import constants as c
 
-# The links that can meet the other arm over the table (base and shoulder stay apart).
+# The links that can meet the other arm over the table: from the elbow out. The bases stand
+# 0.5 m apart, and the base and shoulder links turn about their own spot.
 IK_GUARDED_BODIES = (
     "panda_link3", "panda_link4", "panda_link5", "panda_link6", "panda_link7", "panda_hand",
 )
+MEASURED_BODIES = IK_GUARDED_BODIES + c.FINGER_BODIES
 FAR = 1.0  # m: approaches farther than this are not measured exactly
 
 
@@ -36,11 +38,12 @@ def arm_geoms(model: mujoco.MjModel, arm: str, bodies: tuple[str, ...] | None = 
 
 
 class ArmClearance:
-    """The closest approach between the two arms' geoms over every control step."""
+    """The closest approach between the two arms, elbow to fingertips, over every control
+    step."""
 
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         self.model, self.data = model, data
-        left, right = arm_geoms(model, "left"), arm_geoms(model, "right")
+        left, right = (arm_geoms(model, arm, MEASURED_BODIES) for arm in c.ARMS)
         pairs = np.array([(a, b) for a in left for b in right])
         self._g1, self._g2 = pairs[:, 0], pairs[:, 1]
         self._rsum = model.geom_rbound[self._g1] + model.geom_rbound[self._g2]

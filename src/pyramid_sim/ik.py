@@ -23,7 +23,7 @@ from .scene import build_spec
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
 # as much as the solve itself (0.12 of 0.45 ms a step, measured in a build).
 NO_LOWER_BOUND = -1e30
-COLLISION_LOOKAHEAD = 0.25  # m beyond the minimum arm distance at which the limit takes effect
+COLLISION_LOOKAHEAD = 0.10  # m beyond the minimum arm distance at which the limit takes effect
 ARM_BRAKING = 4.0  # m/s^2: the arms may close on each other no faster than they can stop in time
 VELOCITY_MARGIN = 0.9
 # Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
