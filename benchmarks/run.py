@@ -2,6 +2,7 @@
 """Benchmark: bare physics, the headless build, IK, rendering and sweeps, in one run.
 
     python benchmarks/run.py [--json PATH] [--layers N] [--frames N] [--sweep-builds N]
+                             [--sweep-rounds N]
 
 Prints a table of every figure against its target; `--json` also writes the figures.
 Targets are reported, never asserted: these machines are too noisy for timed tests.
@@ -27,13 +28,18 @@ def main(argv: list[str] | None = None) -> int:
                         help="frames rendered per setting (default 60)")
     parser.add_argument("--sweep-builds", type=_whole("sweep builds", "1 to 100"), default=2,
                         help="builds per worker in the sweep figures (default 2)")
+    parser.add_argument("--sweep-rounds", type=_whole("sweep rounds", "1 to 10"), default=2,
+                        help="alternated 1- and 2-worker sweeps, best of each (default 2)")
     args = parser.parse_args(argv)
     try:
         choose_gl_backend()  # before mujoco is imported
         from pyramid_sim.benchmark import BenchConfig, run_all, table
         from pyramid_sim.results import write_json_atomic
 
-        bench = BenchConfig(layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds)
+        bench = BenchConfig(
+            layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds,
+            sweep_rounds=args.sweep_rounds,
+        )
         if args.json is not None:
             check_writable_dir(args.json.parent)
     except ConfigError as err:

@@ -28,7 +28,8 @@ def _bench(*args: str) -> subprocess.CompletedProcess:
 @pytest.mark.physics
 def test_benchmark_reports_every_figure(tmp_path):
     out = tmp_path / "bench.json"
-    run = _bench("--layers", "1", "--frames", "3", "--sweep-builds", "1", "--json", str(out))
+    run = _bench("--layers", "1", "--frames", "3", "--sweep-builds", "1", "--sweep-rounds", "1",
+                 "--json", str(out))
     assert run.returncode == 0, run.stderr
     figures = json.loads(out.read_text())
     for key in KEYS:
@@ -51,6 +52,7 @@ def test_benchmark_reports_every_figure(tmp_path):
         (["--layers", "six"], "layers"),
         (["--frames", "-1"], "frames"),
         (["--sweep-builds", "0"], "sweep builds"),
+        (["--sweep-rounds", "11"], "sweep rounds"),
         (["--json", "/proc/no/such/bench.json"], "out"),
     ],
 )

@@ -34,12 +34,14 @@ class BenchConfig:
     layers: int = 4
     frames: int = 60
     sweep_builds: int = 2  # per worker
+    sweep_rounds: int = 2  # 1-worker and 2-worker sweeps, alternated; the best of each counts
     bare_seconds: float = 10.0  # simulated seconds of bare physics
 
     def __post_init__(self) -> None:
         check_count("layers", self.layers, 1, 5)
         check_count("frames", self.frames, 1, 10_000)
         check_count("sweep builds", self.sweep_builds, 1, 100)
+        check_count("sweep rounds", self.sweep_rounds, 1, 10)
 
     @property
     def structure(self) -> StructureSpec:
@@ -217,11 +219,18 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     figures["build_to_replay_ratio"] = figures["build_steps_per_s"] / figures["replay_steps_per_s"]
     progress("render and encode")
     figures.update(video_figures(sim, bench.frames))
+    # Alternated rounds, best of each: another tenant's load on this VM lowers a rate, never
+    # raises it, and a single pair of runs gave scaling from 1.6 to 1.9.
     for workers in (1, 2):
-        progress(f"sweep, {workers} worker{'s' if workers > 1 else ''}")
-        rate, ok = sweep_rate(spec, workers, workers * bench.sweep_builds)
-        figures[f"sweep_builds_per_hour_{workers}"] = rate
-        figures[f"sweep_successes_{workers}"] = ok
+        figures[f"sweep_builds_per_hour_{workers}"] = 0.0
+        figures[f"sweep_successes_{workers}"] = 0
+    for round_ in range(1, bench.sweep_rounds + 1):
+        for workers in (1, 2):
+            progress(f"sweep round {round_}, {workers} worker{'s' if workers > 1 else ''}")
+            rate, ok = sweep_rate(spec, workers, workers * bench.sweep_builds)
+            key = f"sweep_builds_per_hour_{workers}"
+            figures[key] = max(figures[key], rate)
+            figures[f"sweep_successes_{workers}"] += ok
     figures["sweep_scaling"] = figures["sweep_builds_per_hour_2"] / figures["sweep_builds_per_hour_1"]
     return figures
 
