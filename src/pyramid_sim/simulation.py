@@ -13,7 +13,6 @@ import numpy as np
 from . import constants as c
 from .arm_runner import ArmRunner
 from .config import SimConfig
-from .errors import SimulationError
 from .clearance import ArmClearance
 from .incidents import (
     DROP_DISTANCE, MAX_DROPS_PER_BRICK, Drop, Knock, KnockWatch, grip_diagnosis,
