@@ -21,13 +21,13 @@ from .poses import Pose, tcp_quaternion, yaw_of
 from .scene import build_spec
 
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
-# as much as the solve itself (0.12 of 0.45 ms a step, measured in a build).
+# a sixth of a solve.
 NO_LOWER_BOUND = -1e30
 COLLISION_LOOKAHEAD = 0.10  # m beyond the minimum arm distance at which the limit takes effect
 ARM_BRAKING = 4.0  # m/s^2: the arms may close on each other no faster than they can stop in time
 VELOCITY_MARGIN = 0.9
 # Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
-# for the whole error every 10 ms; with the acceleration clip below that over-corrects and rings
+# for the whole error every 10 ms; against the acceleration bound that over-corrects and rings
 # (an arm reaching across to the far side rang +-20 mm over the spawn spot); 0.5 settles.
 FRAME_GAIN = 0.5
 
@@ -35,12 +35,12 @@ FRAME_GAIN = 0.5
 class _BrakingLimit(mink.Limit):
     """mink's collision avoidance limit, reshaped so the arms can always stop in time.
 
-    mink bounds each step's approach by a share of the gap left (gain x gap / dt). Our IK then
-    clips each step's change of velocity to the Panda's accelerations, which can overrule a late
-    stop: with both hands sent to one point the arms met 50-80 mm deep. Here the approach speed
+    mink bounds each step's approach by a share of the gap left (gain x gap / dt), which allows
+    full speed until just short of the minimum and then an instant stop; the Panda's
+    acceleration bounds cannot follow (with both hands sent to one point, and the velocity
+    clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
     is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
-    modest `ARM_BRAKING`; so the stop is never sharper than the clip allows (the same test: the
-    links stay 50 mm apart)."""
+    modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart)."""
 
     def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
         # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
@@ -66,8 +66,8 @@ def arm_dof_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
 
 
 class DualArmIK:
-    """One mink problem for both arms: a TCP frame task per arm, a light posture task,
-    joint position and velocity limits."""
+    """One mink problem for both arms: a TCP frame task per arm, a light posture task, joint
+    position, velocity and acceleration limits, and a minimum distance between the arms."""
 
     def __init__(
         self,
