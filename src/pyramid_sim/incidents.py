@@ -20,7 +20,7 @@ GRAVITY = 9.81
 @dataclass(frozen=True)
 class Drop:
     """A brick that left the hand: which (build order, magazine slot), whose, when, where, in
-    which step, and whether it came to rest on the spawn spot (then it is picked again)."""
+    which step, and whether it lay on the spawn spot as spawned when the drop was seen."""
 
     brick: int
     arm: str

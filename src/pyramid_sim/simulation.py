@@ -109,6 +109,7 @@ class BuildSim:
         self.slot_of: dict[int, int] = {}
         self.slip_mm: dict[int, float] = {}
         self.drops: list[Drop] = []
+        self._lost: list[int] = []  # slots of dropped bricks, not (yet) picked again
         self.knocks: list[Knock] = []
         self.knock_watch = KnockWatch()
         self.clearance = ArmClearance(m, self.data)
@@ -175,9 +176,9 @@ class BuildSim:
 
     def _drop(self, arm: str, carry: Carry, step: str) -> None:
         """A brick left the hand: record it, send the arm to clear with its fingers open and
-        put the brick back in its queue. A brick that fell back onto the spawn spot is picked
-        again; one that fell elsewhere is replaced by a spare. The third drop of one brick
-        stops the build, saying why."""
+        put the brick back in its queue. A brick that comes to rest on the spawn spot is picked
+        again; one that lands elsewhere is replaced by a spare (`_feed_spot`). The third drop
+        of one brick stops the build, saying why."""
         d = self.data
         on_spot = self.spawner.rests_on_spot(d, carry.slot)
         pos = tuple(float(v) for v in d.xpos[self.spawner.body[carry.slot]])
@@ -191,8 +192,7 @@ class BuildSim:
                 f"{grip_diagnosis(self.config)}"
             )
             return
-        if on_spot:
-            self.spawner.put_back(carry.slot)
+        self._lost.append(carry.slot)  # picked again if it comes to rest on the spot
         runner = self.runners[arm]
         runner.gap = runner.open_gap
         runner.load(clear_steps(arm, self.config.motion))
@@ -283,10 +283,8 @@ class BuildSim:
         for a in c.ARMS:
             self.runners[a].load([])
         while True:
-            if self.spawner.current is None and self.spawner.remaining > 0 and self._needs_brick():
-                hands = [self.tcp(a)[0] for a in c.ARMS]
-                if self.spawner.spot_clear(d, hands):
-                    self.spawner.spawn_next(d)
+            if self.spawner.current is None and self._needs_brick():
+                self._feed_spot()
             outside = {a: self._arm_outside(a) for a in c.ARMS}
             for a in c.ARMS:
                 self.scheduler.report_zone(a, outside[a])
@@ -367,6 +365,19 @@ class BuildSim:
             f"stalled at t = {self.data.time:.1f} s: no arm finished a move for "
             f"{self.config.stall_time:g} s; {cause}"
         )
+
+    def _feed_spot(self) -> None:
+        """Give the next pick a brick: a dropped one lying on the spot as spawned is picked
+        again, else the next from the magazine once the spot and the hands are clear."""
+        d = self.data
+        back = next((s for s in self._lost if self.spawner.rests_on_spot(d, s)), None)
+        if back is not None:
+            self._lost.remove(back)
+            self.spawner.put_back(back)
+        elif self.spawner.remaining > 0 and self.spawner.spot_clear(
+            d, [self.tcp(a)[0] for a in c.ARMS]
+        ):
+            self.spawner.spawn_next(d)
 
     def _needs_brick(self) -> bool:
         """A brick is needed while some pick is still to come."""
