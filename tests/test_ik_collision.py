@@ -38,3 +38,29 @@ def test_the_ik_keeps_the_arms_apart(min_distance):
 
 def test_without_a_margin_the_arms_would_meet():
     assert _closest_approach_when_both_hands_aim_at_one_point(0.0) < 0.005
+
+
+def test_the_closest_approach_is_measured_from_the_physics():
+    """ArmClearance on the physics model: arms turned into each other overlap (negative
+    distance); at their clear poses they stand far apart."""
+    from pyramid_sim.clearance import ArmClearance
+    from pyramid_sim.scene import build_scene
+
+    model = build_scene(SimConfig(), 1).model
+    data = mujoco.MjData(model)
+    ik = DualArmIK(SimConfig())
+    q = {arm: ik.solve(arm, clear_pose(arm, MotionConfig())) for arm in c.ARMS}
+    for arm in c.ARMS:
+        for joint, value in zip(c.ARM_JOINTS, q[arm]):
+            data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+    mujoco.mj_forward(model, data)
+    apart = ArmClearance(model, data)
+    apart.update()
+    assert 0.3 < apart.closest < 1.0  # 0.44 m, elbow to fingertips
+    reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]
+    for arm, yaw in (("left", -1.57), ("right", 1.57)):
+        for joint, value in zip(c.ARM_JOINTS, [yaw, *reach]):
+            data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+    mujoco.mj_forward(model, data)
+    apart.update()
+    assert apart.closest < 0.0 and apart.closest_time == 0.0
