@@ -40,7 +40,8 @@ class _BrakingLimit(mink.Limit):
     acceleration bounds cannot follow (with both hands sent to one point, and the velocity
     clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
     is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
-    modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart)."""
+    modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart; mink's own bound, with
+    the acceleration bounds in the QP, 43.5 mm)."""
 
     def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
         # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
