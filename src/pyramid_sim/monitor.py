@@ -1,4 +1,5 @@
-"""What the physics loop watches every physics step, at a few array copies a step.
+"""What the physics loop watches every physics step, at a few array copies a step, and
+whether MuJoCo raised a warning.
 
 Each step copies the spans of qvel, actuator_force and qpos that hold the arms, and the arm-arm
 contact count, into one row of a buffer; the buffer is reduced when full and at the end. Per-step
@@ -46,6 +47,8 @@ class StepMonitor:
         self._torque = _Span(data.actuator_force, actuators)
         self._finger = _Span(data.qpos, fingers)
         self._sensors = data.sensordata
+        self._warnings = data.warning.number  # counts, kept up by MuJoCo
+        self._no_warnings = bytes(self._warnings.nbytes)
         self._contact_adr = int(model.sensor(c.ARM_ARM_SENSOR).adr[0])
         self._contacts = np.zeros(ROWS)
         self._row = 0
@@ -57,8 +60,10 @@ class StepMonitor:
         self.finger_excess = 0.0  # m past either end of the finger joints' range
         self.arm_arm_contacts = 0
 
-    def record(self) -> None:
-        """Copy the state after one physics step into the buffers."""
+    def record(self) -> bool:
+        """Copy the state after one physics step into the buffers; True if MuJoCo raised a
+        warning (NaN or a huge value in the state, a full contact buffer...). Comparing the
+        counters' bytes costs 0.2 us, so this is checked every physics step."""
         row = self._row
         self._speed.buffer[row] = self._speed.view
         self._torque.buffer[row] = self._torque.view
@@ -67,6 +72,7 @@ class StepMonitor:
         self._row = row + 1
         if self._row == ROWS:
             self.flush()
+        return self._warnings.tobytes() != self._no_warnings
 
     def flush(self) -> None:
         """Fold the buffered steps into the peaks (also call it at the end of a run)."""

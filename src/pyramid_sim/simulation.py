@@ -200,12 +200,12 @@ class BuildSim:
         self._task_of[arm] = self.scheduler.task(arm)
 
     def _check_incidents(self) -> None:
-        """Once per control step: placed bricks knocked off, MuJoCo's warnings, the arms'
-        closest approach."""
+        """Once per control step (or at once after a physics step that raised a MuJoCo
+        warning): placed bricks knocked off, MuJoCo's warnings, the arms' closest approach."""
         d = self.data
         self.knocks.extend(self.knock_watch.check(d.xpos, float(d.time)))
         self.clearance.update()
-        if self._warnings.any():  # counts only grow: none raised since the last step is missed
+        if self._warnings.any():
             raised = [mujoco.mjtWarning(i).name for i in np.flatnonzero(self._warnings)]
             self._failure = (
                 f"MuJoCo warning {', '.join(raised)} at t = {d.time:.3f} s: the physics went "
@@ -324,11 +324,12 @@ class BuildSim:
             for k in range(n_sub):
                 ctrl[:] = ramp[k]
                 mujoco.mj_step(m, d)
-                monitor.record()
+                if monitor.record():
+                    break  # a MuJoCo warning: `_check_incidents` stops the build with it
                 if observer is not None and observe_dt is not None and d.time >= next_frame - 1e-9:
                     observer(m, d)
                     next_frame += observe_dt
-            self.steps += n_sub
+            self.steps += k + 1
             self._track_carries()
             self._check_incidents()
             if self._failure is not None:
