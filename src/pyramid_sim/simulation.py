@@ -113,7 +113,6 @@ class BuildSim:
         self.knocks: list[Knock] = []
         self.knock_watch = KnockWatch()
         self.clearance = ArmClearance(m, self.data)
-        self._warnings = self.data.warning.number  # a view: counts, updated by MuJoCo
         self._failure: str | None = None  # set by bookkeeping that must stop the build
         self.placed = 0
         self.zone_violations = 0
@@ -200,17 +199,20 @@ class BuildSim:
         self._task_of[arm] = self.scheduler.task(arm)
 
     def _check_incidents(self) -> None:
-        """Once per control step (or at once after a physics step that raised a MuJoCo
-        warning): placed bricks knocked off, MuJoCo's warnings, the arms' closest approach."""
+        """Once per control step: placed bricks knocked off, the arms' closest approach."""
         d = self.data
         self.knocks.extend(self.knock_watch.check(d.xpos, float(d.time)))
         self.clearance.update()
-        if self._warnings.any():
-            raised = [mujoco.mjtWarning(i).name for i in np.flatnonzero(self._warnings)]
-            self._failure = (
-                f"MuJoCo warning {', '.join(raised)} at t = {d.time:.3f} s: the physics went "
-                "wrong (a diverging or overfull step), so the build was stopped"
-            )
+
+    def _warning_reason(self) -> str:
+        """The failure for a step that raised MuJoCo warnings (NaN or huge values in the
+        state among them: MuJoCo checks qpos, qvel and qacc every step)."""
+        counts = self.data.warning.number
+        raised = [mujoco.mjtWarning(i).name for i in np.flatnonzero(counts)]
+        return (
+            f"MuJoCo warning {', '.join(raised)} at t = {self.data.time:.3f} s: the physics "
+            "went wrong (a diverging or overfull step), so the build was stopped"
+        )
 
     # --- control ------------------------------------------------------------------------
     def _assign(self, arm: str) -> None:
@@ -321,22 +323,24 @@ class BuildSim:
             )
             # Joint and gripper targets ramped across the physics steps: stepped targets jolt.
             ramp = ctrl_prev + (ctrl_next - ctrl_prev) * self._ramp
+            warned = False
             for k in range(n_sub):
                 ctrl[:] = ramp[k]
                 mujoco.mj_step(m, d)
-                if monitor.record():
-                    break  # a MuJoCo warning: `_check_incidents` stops the build with it
+                warned = monitor.record()
+                if warned:
+                    break
                 if observer is not None and observe_dt is not None and d.time >= next_frame - 1e-9:
                     observer(m, d)
                     next_frame += observe_dt
             self.steps += k + 1
+            if warned:
+                failure = self._warning_reason()
+                break
             self._track_carries()
             self._check_incidents()
             if self._failure is not None:
                 failure = self._failure
-                break
-            if not np.all(np.isfinite(d.qpos)):
-                failure = f"simulation diverged (NaN in the state) at t = {d.time:.2f} s"
                 break
             if d.time > cfg.max_sim_time:
                 failure = f"build did not finish within {cfg.max_sim_time:g} s of simulated time"
