@@ -9,7 +9,7 @@ import mujoco
 import numpy as np
 
 from . import constants as c
-from .poses import Pose, symmetric_yaw_error
+from .poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
 
 ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
 ON_SPOT_Z = 0.003  # m
@@ -63,12 +63,11 @@ class Spawner:
         body = self.body[slot]
         offset = data.xpos[body] - self.spawn.position
         rot = data.xmat[body].reshape(3, 3)
-        turn = symmetric_yaw_error(math.atan2(rot[1, 0], rot[0, 0]), self.spawn.yaw)
         return bool(
             math.hypot(offset[0], offset[1]) <= self.jitter * math.sqrt(2) + ON_SPOT_XY
             and abs(offset[2]) <= ON_SPOT_Z
-            and rot[2, 2] >= math.cos(ON_SPOT_ANGLE)
-            and turn <= ON_SPOT_ANGLE
+            and tilt_of(rot) <= ON_SPOT_ANGLE
+            and symmetric_yaw_error(yaw_of(rot), self.spawn.yaw) <= ON_SPOT_ANGLE
         )
 
     def put_back(self, slot: int) -> None:
