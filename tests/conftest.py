@@ -38,3 +38,16 @@ def refused(capsys):
         return err
 
     return run
+
+
+@pytest.fixture
+def teleport():
+    """Move a brick (by magazine slot) of a running BuildSim to a position, at rest: how tests
+    knock a brick out of a hand or off the structure."""
+
+    def move(sim, data, slot: int, position: tuple[float, float, float]) -> None:
+        q, v = sim.spawner.qadr[slot], sim.spawner.dadr[slot]
+        data.qpos[q : q + 3] = position
+        data.qvel[v : v + 6] = 0.0
+
+    return move

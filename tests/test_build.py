@@ -72,7 +72,7 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     assert result["bricks_placed"] == 0
 
 
-def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reason():
+def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reason(teleport):
     """A brick knocked out of the hand onto the table beside the spawn spot blocks the spare
     that would replace it; the next pick waits for the spot, the build ends at the stall limit
     and says why (naming the drop) instead of running to the time limit."""
@@ -87,9 +87,7 @@ def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reaso
     def knock(model, data):
         carry, step = sim.carry["left"], sim.runners["left"].current
         if carry is not None and step is not None and step.name == "clear":
-            q, v = sim.spawner.qadr[carry.slot], sim.spawner.dadr[carry.slot]
-            data.qpos[q : q + 3] = (0.49, -0.12, 0.111)  # on the table, 13 cm from the spot
-            data.qvel[v : v + 6] = 0.0
+            teleport(sim, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
 
     result = result_document(sim.run(observer=knock, observe_dt=config.timestep))
     assert not result["success"]

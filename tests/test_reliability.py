@@ -24,20 +24,14 @@ def _two_brick_build(config: SimConfig = SimConfig()) -> BuildSim:
     return BuildSim(prepare(StructureSpec("pyramid-even", layers=1), config), config)
 
 
-def _teleport(sim: BuildSim, data, slot: int, position: tuple[float, float, float]) -> None:
-    q, v = sim.spawner.qadr[slot], sim.spawner.dadr[slot]
-    data.qpos[q : q + 3] = position
-    data.qvel[v : v + 6] = 0.0
-
-
-def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed():
+def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(teleport):
     sim = _two_brick_build()
     knocked = []
 
     def knock(model, data):  # once, while the left arm carries its brick out to its clear pose
         carry, step = sim.carry["left"], sim.runners["left"].current
         if not knocked and carry is not None and step is not None and step.name == "clear":
-            _teleport(sim, data, carry.slot, FLOOR_AWAY)
+            teleport(sim, data, carry.slot, FLOOR_AWAY)
             knocked.append(carry.slot)
 
     doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
@@ -54,13 +48,13 @@ def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure
     json.dumps(doc, allow_nan=False)
 
 
-def test_a_brick_knocked_off_the_structure_is_reported():
+def test_a_brick_knocked_off_the_structure_is_reported(teleport):
     sim = _two_brick_build()
     knocked = []
 
     def knock(model, data):  # the first placed brick, pushed off once the second is picked
         if not knocked and sim.knock_watch.slots and sim.carry["right"] is not None:
-            _teleport(sim, data, sim.knock_watch.slots[0], FLOOR_AWAY)
+            teleport(sim, data, sim.knock_watch.slots[0], FLOOR_AWAY)
             knocked.append(data.time)
 
     doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
