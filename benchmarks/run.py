@@ -16,7 +16,7 @@ from pathlib import Path
 
 from pyramid_sim.cli import EXIT_USAGE, _Parser, _whole, check_writable_dir
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.gl_backend import choose_gl_backend
+from pyramid_sim.output.gl_backend import choose_gl_backend
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -34,7 +34,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         choose_gl_backend()  # before mujoco is imported
         from pyramid_sim.benchmark import BenchConfig, run_all, table
-        from pyramid_sim.results import write_json_atomic
+        from pyramid_sim.output.results import write_json_atomic
 
         bench = BenchConfig(
             layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds,

@@ -1,9 +1,9 @@
 import pytest
 
-from pyramid_sim.build import prepare, run_build
+from pyramid_sim.physics.build import prepare, run_build
 from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
-from pyramid_sim.structures import StructureSpec
+from pyramid_sim.core.structures import StructureSpec
 
 _BUILDS: dict = {}
 

@@ -7,10 +7,12 @@ from pathlib import Path
 
 import pytest
 
+from pyramid_sim.resources import GOALS
+
 from pyramid_sim import ConfigError
 from pyramid_sim.config import BrickConfig
-from pyramid_sim.goals import bricks_overlap, load_goals
-from pyramid_sim.structures import (
+from pyramid_sim.core.goals import bricks_overlap, load_goals
+from pyramid_sim.core.structures import (
     SEED_START,
     SEED_WALL_TOLERANCE,
     StructureSpec,
@@ -21,7 +23,6 @@ from pyramid_sim.structures import (
 )
 
 SEED_BRICK = BrickConfig(length=0.2, width=0.09, height=0.06)  # goal_manager_server2/3's brick
-ASSETS = Path(__file__).resolve().parents[1] / "assets"
 TABLE_Z = 0.11
 
 
@@ -126,7 +127,7 @@ def test_impossible_sizes_are_refused(kwargs, words):
 
 
 def test_the_seeds_five_goals_ship_as_an_example():
-    goals = load_goals(ASSETS / "goals" / "seed_five.json", BrickConfig(), TABLE_Z)
+    goals = load_goals(GOALS / "seed_five.json", BrickConfig(), TABLE_Z)
     assert [round(g.pose.y, 3) for g in goals] == [0.01, -0.24, 0.26, -0.17, 0.19]
     assert [g.layer for g in goals] == [0, 0, 0, 1, 1]
     assert all(g.pose.yaw == pytest.approx(1.5708) for g in goals)

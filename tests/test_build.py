@@ -6,10 +6,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pyramid_sim.build import prepare
+from pyramid_sim.resources import GOALS
+
+from pyramid_sim.physics.build import prepare
 from pyramid_sim.config import SimConfig
-from pyramid_sim.simulation import BuildSim
-from pyramid_sim.structures import StructureSpec
+from pyramid_sim.physics.loop import BuildSim
+from pyramid_sim.core.structures import StructureSpec
 
 pytestmark = pytest.mark.physics
 
@@ -63,7 +65,7 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     """The measurement can fail: a 1 N grip on a 0.5 kg brick cannot lift it."""
     from dataclasses import replace
 
-    from pyramid_sim.build import run_build
+    from pyramid_sim.physics.build import run_build
 
     base = SimConfig()
     config = replace(base, gripper=replace(base.gripper, force=1.0), max_sim_time=60.0)
@@ -78,8 +80,8 @@ def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reaso
     and says why (naming the drop) instead of running to the time limit."""
     from dataclasses import replace
 
-    from pyramid_sim.results import result_document
-    from pyramid_sim.simulation import BuildSim
+    from pyramid_sim.output.results import result_document
+    from pyramid_sim.physics.loop import BuildSim
 
     config = replace(SimConfig(), stall_time=15.0)
     sim = BuildSim(prepare(StructureSpec("pyramid", layers=2), config), config)
@@ -101,7 +103,7 @@ def test_bricks_spawned_off_the_spot_are_still_built():
     the Newton line search now has 50 iterations)."""
     from dataclasses import replace
 
-    from pyramid_sim.build import run_build
+    from pyramid_sim.physics.build import run_build
 
     base = SimConfig()
     config = replace(base, layout=replace(base.layout, spawn_jitter_mm=2.0), seed=1)
@@ -112,12 +114,12 @@ def test_bricks_spawned_off_the_spot_are_still_built():
     assert result["max_slip_mm"] < 2.0
 
 
-SEED_FIVE = Path(__file__).resolve().parents[1] / "assets" / "goals" / "seed_five.json"
+SEED_FIVE = GOALS / "seed_five.json"
 
 
 def _brick_manager_spec(name: str) -> StructureSpec:
     if name == "list":
-        from pyramid_sim.goals import load_goals
+        from pyramid_sim.core.goals import load_goals
 
         config = SimConfig()
         goals = load_goals(SEED_FIVE, config.brick, config.layout.table_top_z + config.brick.height / 2)
@@ -138,7 +140,7 @@ def _brick_manager_spec(name: str) -> StructureSpec:
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
     """Every structure at its default size (the seed's five goals for the list), by both arms
     and by one alone; every final pose within the pyramid tests' tolerances."""
-    from pyramid_sim.build import run_build
+    from pyramid_sim.physics.build import run_build
 
     config = SimConfig()
     plan = prepare(_brick_manager_spec(name), config, arms)

@@ -5,6 +5,8 @@ from pathlib import Path
 
 import pytest
 
+from pyramid_sim.resources import GOALS
+
 from pyramid_sim.cli import main
 
 
@@ -64,7 +66,7 @@ def test_build_writes_the_result(tmp_path):
         assert key in brick
 
 
-GOALS = Path(__file__).resolve().parents[1] / "assets" / "goals" / "seed_five.json"
+SEED_FIVE = GOALS / "seed_five.json"
 
 
 @pytest.mark.parametrize(
@@ -75,7 +77,7 @@ GOALS = Path(__file__).resolve().parents[1] / "assets" / "goals" / "seed_five.js
         (["--structure", "wall-pyramid", "--wall-width", "2", "--layers", "3"], "accepted 1 to 2"),
         (["--structure", "towers", "--towers", "13"], "towers"),
         (["--structure", "list"], "goals"),
-        (["--structure", "pyramid", "--goals", str(GOALS)], "goals"),
+        (["--structure", "pyramid", "--goals", str(SEED_FIVE)], "goals"),
         (["--structure", "list", "--goals", "/nonexistent/g.json"], "cannot read"),
         (["--structure", "pyramid", "--arms", "middle"], "arms"),
         (["--structure", "wall", "--wall-width", "9"], "largest reachable is width"),
@@ -89,7 +91,7 @@ def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, refused, args, 
 
 def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
     for args in (["--structure", "wall"], ["--structure", "towers", "--arms", "right"],
-                 ["--structure", "list", "--goals", str(GOALS)]):
+                 ["--structure", "list", "--goals", str(SEED_FIVE)]):
         assert main(["plan", *args]) == 0
         doc = json.loads(capsys.readouterr().out)
         assert doc["structure"] == args[1] and doc["size"] and doc["bricks"]

@@ -4,12 +4,12 @@ import mujoco
 import numpy as np
 import pytest
 
-from pyramid_sim import constants as c
-from pyramid_sim.clearance import IK_GUARDED_BODIES, arm_geoms
+from pyramid_sim.physics import names as c
+from pyramid_sim.physics.clearance import IK_GUARDED_BODIES, arm_geoms
 from pyramid_sim.config import MotionConfig, SimConfig
-from pyramid_sim.ik import DualArmIK
-from pyramid_sim.poses import Pose
-from pyramid_sim.primitives import clear_pose
+from pyramid_sim.physics.ik import DualArmIK
+from pyramid_sim.core.poses import Pose
+from pyramid_sim.core.primitives import clear_pose
 
 
 def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> float:
@@ -43,8 +43,8 @@ def test_without_a_margin_the_arms_would_meet():
 def test_the_closest_approach_is_measured_from_the_physics():
     """ArmClearance on the physics model: arms turned into each other overlap (negative
     distance); at their clear poses they stand far apart."""
-    from pyramid_sim.clearance import ArmClearance
-    from pyramid_sim.scene import build_scene
+    from pyramid_sim.physics.clearance import ArmClearance
+    from pyramid_sim.physics.scene import build_scene
 
     model = build_scene(SimConfig(), 1).model
     data = mujoco.MjData(model)

@@ -3,11 +3,11 @@ import math
 import numpy as np
 import pytest
 
-from pyramid_sim.poses import (
+from pyramid_sim.core.poses import (
     Pose, grasp_yaw, symmetric_yaw_error, tcp_quaternion, tcp_rotation, yaw_of,
 )
-from pyramid_sim.results import quat_to_matrix
-from pyramid_sim.trajectory import min_jerk, plan_segment
+from pyramid_sim.output.results import quat_to_matrix
+from pyramid_sim.core.trajectory import min_jerk, plan_segment
 
 
 def test_tcp_rotation_points_down_with_its_yaw():

@@ -8,12 +8,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from pyramid_sim.build import prepare
+from pyramid_sim.physics.build import prepare
 from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
-from pyramid_sim.results import result_document
-from pyramid_sim.simulation import BuildSim
-from pyramid_sim.structures import StructureSpec
+from pyramid_sim.output.results import result_document
+from pyramid_sim.physics.loop import BuildSim
+from pyramid_sim.core.structures import StructureSpec
 
 FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of everyone's way
 

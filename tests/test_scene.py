@@ -3,9 +3,9 @@
 import mujoco
 import numpy as np
 
-from pyramid_sim import constants as c
+from pyramid_sim.physics import names as c
 from pyramid_sim.config import BrickConfig, SimConfig
-from pyramid_sim.scene import build_scene
+from pyramid_sim.physics.scene import build_scene
 
 
 def test_scene_holds_two_pandas_a_table_and_the_magazine():

@@ -4,10 +4,10 @@ import mujoco
 import numpy as np
 
 from pyramid_sim.config import SimConfig
-from pyramid_sim.plan import make_plan
-from pyramid_sim.scene import build_scene
-from pyramid_sim.spawner import Spawner
-from pyramid_sim.structures import StructureSpec
+from pyramid_sim.core.plan import make_plan
+from pyramid_sim.physics.scene import build_scene
+from pyramid_sim.physics.spawner import Spawner
+from pyramid_sim.core.structures import StructureSpec
 
 
 def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:

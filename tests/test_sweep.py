@@ -14,10 +14,10 @@ from pathlib import Path
 import pytest
 
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.sweep_grid import SweepConfig, parse_axis
-from pyramid_sim.sweep_report import summary_table, write_heatmaps
-from pyramid_sim.sweep_runner import RunResult, _row, run_processes
-from pyramid_sim.sweep_store import COLUMNS, SweepStore
+from pyramid_sim.sweep.grid import SweepConfig, parse_axis
+from pyramid_sim.sweep.report import summary_table, write_heatmaps
+from pyramid_sim.sweep.runner import RunResult, _row, run_processes
+from pyramid_sim.sweep.store import COLUMNS, SweepStore
 
 
 def test_range_and_list_grids():

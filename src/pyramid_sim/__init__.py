@@ -1,12 +1,12 @@
 """pyramid_sim: two Franka Pandas build brick structures in MuJoCo, after Robot DE NIRO."""
 
-from .assignment import Assignment, arrange
+from .core.assignment import Assignment, arrange
 from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig
 from .errors import ConfigError, PyramidSimError, SimulationError, UnreachableError
-from .plan import Plan, make_plan
-from .poses import Pose
-from .scheduler import Action, LockstepScheduler, Task
-from .structures import (
+from .core.plan import Plan, make_plan
+from .core.poses import Pose
+from .core.scheduler import Action, LockstepScheduler, Task
+from .core.structures import (
     BrickTarget,
     StructureSpec,
     create_coordinates,

@@ -16,13 +16,13 @@ from typing import Any, Callable
 import mujoco
 import numpy as np
 
-from .build import prepare
+from .physics.build import prepare
 from .config import SimConfig, VideoConfig, check_count
-from .results import result_document
-from .simulation import BuildSim
-from .structures import StructureSpec
-from .sweep_grid import RunSpec
-from .sweep_runner import RunResult, run_processes
+from .output.results import result_document
+from .physics.loop import BuildSim
+from .core.structures import StructureSpec
+from .sweep.grid import RunSpec
+from .sweep.runner import RunResult, run_processes
 
 Progress = Callable[[str], None]
 
@@ -166,7 +166,7 @@ def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any
 def video_figures(sim: BuildSim, frames: int) -> dict[str, float]:
     """Render `frames` 640x480 frames of the finished build with and without shadows, and
     encode them with the recorder's settings: ms per frame for each."""
-    from .video import Recorder
+    from .output.video import Recorder
 
     figures: dict[str, float] = {}
     with tempfile.TemporaryDirectory() as tmp:

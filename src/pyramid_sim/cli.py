@@ -19,9 +19,9 @@ from typing import NoReturn, Sequence
 
 from .config import BrickConfig, GripperConfig, SimConfig, VideoConfig
 from .errors import ConfigError, PyramidSimError
-from .plan import ARM_CHOICES
-from .structures import MAX_BRICKS, MAX_COURSE, MAX_LAYERS, STRUCTURES, StructureSpec
-from .sweep_grid import PARAMETERS, SweepConfig, parse_axis
+from .core.plan import ARM_CHOICES
+from .core.structures import MAX_BRICKS, MAX_COURSE, MAX_LAYERS, STRUCTURES, StructureSpec
+from .sweep.grid import PARAMETERS, SweepConfig, parse_axis
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -91,7 +91,7 @@ def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec
     """The structure and its size; ConfigError for a bad size, option or goals file."""
     goals = None
     if args.goals is not None:
-        from .goals import load_goals
+        from .core.goals import load_goals
 
         table_z = config.layout.table_top_z + config.brick.height / 2
         goals = load_goals(args.goals, config.brick, table_z)
@@ -197,7 +197,7 @@ def check_writable_dir(path: Path) -> None:
 
 
 def _cmd_plan(args: argparse.Namespace) -> int:
-    from .plan import make_plan
+    from .core.plan import make_plan
 
     config = config_from_args(args)
     plan = make_plan(spec_from_args(args, config), config, args.arms)
@@ -217,13 +217,13 @@ def _cmd_build(args: argparse.Namespace) -> int:
                 raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
             check_writable_dir(path.parent)
     if args.video is not None or args.snapshot is not None:
-        from .gl_backend import choose_gl_backend
+        from .output.gl_backend import choose_gl_backend
 
         choose_gl_backend()  # before mujoco is imported
     from tqdm import tqdm
 
-    from .build import prepare, run_build
-    from .results import write_json_atomic
+    from .physics.build import prepare, run_build
+    from .output.results import write_json_atomic
 
     plan = prepare(spec_from_args(args, config), config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
@@ -256,8 +256,8 @@ def _cmd_view(args: argparse.Namespace) -> int:
 
     import mujoco.viewer
 
-    from .build import prepare
-    from .simulation import BuildSim
+    from .physics.build import prepare
+    from .physics.loop import BuildSim
 
     config = config_from_args(args)
     sim = BuildSim(prepare(spec_from_args(args, config), config, args.arms), config)
@@ -294,13 +294,13 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
     if config.backend == "ray":
-        from .sweep_runner import require_ray
+        from .sweep.runner import require_ray
 
         require_ray()
     from tqdm import tqdm
 
-    from .build import prepare
-    from .sweep import report, run_sweep
+    from .physics.build import prepare
+    from .sweep.run import report, run_sweep
 
     prepare(config.structure, SimConfig(), config.arms)  # out of reach: one line, nothing run
     runs = len(config.runs())
@@ -318,8 +318,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_reach(args: argparse.Namespace) -> int:
-    from .reach import ReachChecker, held_fixed
-    from .structures import SIZE_KNOB
+    from .physics.reach import ReachChecker, held_fixed
+    from .core.structures import SIZE_KNOB
 
     arm_sets = ("both", "left", "right") if args.arms == "all" else (args.arms,)
     checker = ReachChecker(SimConfig())

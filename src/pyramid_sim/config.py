@@ -70,6 +70,7 @@ class GripperConfig:
     stroke: float = 0.05  # m per finger
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
     settle_time: float = 0.15  # s after the ramp, for the force to build
+    stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:
         check_range("grip force", self.force, 0.0, 140.0, low_open=True)
@@ -77,6 +78,7 @@ class GripperConfig:
         check_range("finger stroke", self.stroke, 0.045, 0.06)
         check_range("gripper close time", self.close_time, 0.02, 2.0)
         check_range("gripper settle time", self.settle_time, 0.0, 2.0)
+        check_range("gripper stiffness", self.stiffness, 100.0, 1e5)
 
 
 @dataclass(frozen=True)

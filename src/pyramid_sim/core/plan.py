@@ -6,8 +6,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from .assignment import Assignment, arrange, single_arm
-from .config import LayoutConfig, SimConfig
-from .errors import ConfigError
+from ..config import LayoutConfig, SimConfig
+from ..errors import ConfigError
 from .poses import Pose
 from .structures import StructureSpec
 

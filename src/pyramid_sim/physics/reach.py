@@ -6,15 +6,15 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import constants as c
-from .config import SimConfig
-from .errors import ConfigError, UnreachableError
+from . import names as c
+from ..config import SimConfig
+from ..errors import ConfigError, UnreachableError
 from .ik import DualArmIK
-from .plan import Plan, make_plan
-from .poses import Pose
-from .primitives import clear_pose, pick_steps, place_steps
-from .scheduler import other
-from .structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
+from ..core.plan import Plan, make_plan
+from ..core.poses import Pose
+from ..core.primitives import clear_pose, pick_steps, place_steps
+from ..core.scheduler import other
+from ..core.structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
 
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:

@@ -5,12 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Callable
 
-from .config import SimConfig, VideoConfig
-from .plan import Plan, make_plan
+from ..config import SimConfig, VideoConfig
+from ..core.plan import Plan, make_plan
 from .reach import require_reachable
-from .results import result_document
-from .simulation import BuildSim, Observer
-from .structures import StructureSpec
+from ..output.results import result_document
+from .loop import BuildSim, Observer
+from ..core.structures import StructureSpec
 
 
 def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
@@ -35,7 +35,7 @@ def run_build(
     sim = BuildSim(plan, config)
     recorder = None
     if video is not None:
-        from .video import Recorder
+        from ..output.video import Recorder
 
         recorder = Recorder(sim.model, video[0], video[1], on_frame)
         observer, observe_dt = recorder, 1.0 / video[0].fps
@@ -51,7 +51,7 @@ def run_build(
     if recorder is not None:
         document["video"] = {"path": str(video[1]), "frames": recorder.frames, "fps": video[0].fps}
     if snapshot is not None:
-        from .video import write_still
+        from ..output.video import write_still
 
         write_still(sim.model, sim.data, snapshot[0], snapshot[1])
     return document

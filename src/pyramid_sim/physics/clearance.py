@@ -12,7 +12,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from . import constants as c
+from . import names as c
 
 # The links that can meet the other arm over the table: from the elbow out. The bases stand
 # 0.5 m apart, and the base and shoulder links turn about their own spot.

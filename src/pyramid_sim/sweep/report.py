@@ -11,8 +11,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from .sweep_grid import Axis, SweepConfig, value_text
-from .sweep_store import row_key
+from .grid import Axis, SweepConfig, value_text
+from .store import row_key
 
 PLACE_TOLERANCE_MM = 5.0  # results.Tolerances.xy_mm: the error scale of the map
 SLIP_SCALE_MM = 5.0

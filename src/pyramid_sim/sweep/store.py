@@ -14,8 +14,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from .errors import ConfigError
-from .sweep_grid import PARAMETERS
+from ..errors import ConfigError
+from .grid import PARAMETERS
 
 KEY_COLUMNS = ("structure", "size", "arms", *PARAMETERS, "spawn_jitter_mm", "seed")
 RESULT_COLUMNS = (

@@ -10,21 +10,21 @@ from typing import Callable
 import mujoco
 import numpy as np
 
-from . import constants as c
-from .arm_runner import ArmRunner
-from .config import SimConfig
+from . import names as c
+from ..core.arm_runner import ArmRunner
+from ..config import SimConfig
 from .clearance import ArmClearance
-from .incidents import (
+from ..core.incidents import (
     DROP_DISTANCE, MAX_DROPS_PER_BRICK, Drop, Knock, KnockWatch, grip_diagnosis,
 )
 from .monitor import StepMonitor
 from .ik import DualArmIK, arm_dof_addresses, arm_qpos_addresses
-from .plan import Plan
-from .primitives import StepKind, clear_pose, clear_steps, pick_steps, place_steps
+from ..core.plan import Plan
+from ..core.primitives import StepKind, clear_pose, clear_steps, pick_steps, place_steps
 from .scene import build_scene
-from .scheduler import Action, LockstepScheduler, Task
+from ..core.scheduler import Action, LockstepScheduler, Task
 from .spawner import Spawner
-from .zone import shared_zone
+from ..core.zone import shared_zone
 
 ZONE_BODIES = ("panda_hand", "panda_link6", "panda_link4")
 Observer = Callable[[mujoco.MjModel, mujoco.MjData], None]

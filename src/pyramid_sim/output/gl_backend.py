@@ -9,7 +9,7 @@ from __future__ import annotations
 import ctypes.util
 import os
 
-from .errors import ConfigError
+from ..errors import ConfigError
 
 
 def choose_gl_backend() -> str:

@@ -12,8 +12,8 @@ import math
 from dataclasses import dataclass
 from typing import Callable
 
-from .config import BrickConfig, check_count
-from .errors import ConfigError
+from ..config import BrickConfig, check_count
+from ..errors import ConfigError
 from .poses import Pose
 
 SEED_START = (0.49, 0.01, 0.11)  # xs, ys, zs: the seed's spawn spot and bottom brick centre

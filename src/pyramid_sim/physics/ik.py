@@ -13,11 +13,11 @@ import mink
 import mujoco
 import numpy as np
 
-from . import constants as c
+from . import names as c
 from .clearance import IK_GUARDED_BODIES, arm_geoms
-from .config import SimConfig
-from .errors import UnreachableError
-from .poses import Pose, tcp_quaternion, yaw_of
+from ..config import SimConfig
+from ..errors import UnreachableError
+from ..core.poses import Pose, tcp_quaternion, yaw_of
 from .scene import build_spec
 
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost

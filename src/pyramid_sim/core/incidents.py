@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from .config import SimConfig
+from ..config import SimConfig
 
 DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 KNOCK_DISTANCE = 0.02  # m: a placed brick this far from where it was let go was knocked off

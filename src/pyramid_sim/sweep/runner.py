@@ -16,9 +16,9 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable
 
-from .errors import ConfigError
-from .sweep_grid import RunSpec
-from .sweep_store import KEY_COLUMNS
+from ..errors import ConfigError
+from .grid import RunSpec
+from .store import KEY_COLUMNS
 
 
 @dataclass(frozen=True)
@@ -54,8 +54,8 @@ def run_one(spec: RunSpec) -> RunResult:
     failure: an exception becomes a failed row naming it."""
     start = time.perf_counter()
     try:
-        from .build import run_build
-        from .plan import make_plan
+        from ..physics.build import run_build
+        from ..core.plan import make_plan
 
         config = spec.config()
         document = run_build(make_plan(spec.structure, config, spec.arms), config)

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from .config import MotionConfig
+from ..config import MotionConfig
 from .poses import Pose, grasp_yaw
 
 

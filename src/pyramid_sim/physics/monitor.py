@@ -12,7 +12,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from . import constants as c
+from . import names as c
 
 ROWS = 500  # physics steps buffered between reductions (1 s at 2 ms)
 

@@ -12,7 +12,6 @@ FINGER_BODIES: Final = ("panda_leftfinger", "panda_rightfinger")
 PAD_GEOMS: Final = ("left_pad", "right_pad")
 GRIPPER_ACTUATOR: Final = "gripper"
 GRIPPER_TENDON: Final = "finger_gap"
-GRIPPER_KP: Final = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
 # The real Panda's limits (Franka datasheet, also in example-robot-data's URDF).
 JOINT_VELOCITY_LIMITS: Final = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)

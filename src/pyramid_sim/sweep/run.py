@@ -6,11 +6,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
-from .results import write_json_atomic
-from .sweep_grid import SweepConfig, value_text
-from .sweep_report import grid_rows, summary_table, write_heatmaps
-from .sweep_runner import RunResult, run_processes, run_ray
-from .sweep_store import SweepStore
+from ..output.results import write_json_atomic
+from .grid import SweepConfig, value_text
+from .report import grid_rows, summary_table, write_heatmaps
+from .runner import RunResult, run_processes, run_ray
+from .store import SweepStore
 
 
 def run_file_name(result: RunResult) -> str:

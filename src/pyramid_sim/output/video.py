@@ -15,7 +15,7 @@ import imageio.v2 as imageio
 import mujoco
 import numpy as np
 
-from .config import VideoConfig
+from ..config import VideoConfig
 
 def _temporary_beside(path: Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)

@@ -8,8 +8,8 @@ import math
 import mujoco
 import numpy as np
 
-from . import constants as c
-from .poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
+from . import names as c
+from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
 
 ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
 ON_SPOT_Z = 0.003  # m

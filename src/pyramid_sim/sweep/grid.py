@@ -11,10 +11,10 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Callable
 
-from .config import SimConfig, check_range
-from .errors import ConfigError
-from .plan import ARM_CHOICES
-from .structures import StructureSpec
+from ..config import SimConfig, check_range
+from ..errors import ConfigError
+from ..core.plan import ARM_CHOICES
+from ..core.structures import StructureSpec
 
 MAX_POINTS_PER_AXIS = 50
 MAX_RUNS = 10_000

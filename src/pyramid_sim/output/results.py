@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from .poses import symmetric_yaw_error, tilt_of, yaw_of
-from .simulation import RawResult
+from ..core.poses import symmetric_yaw_error, tilt_of, yaw_of
+from ..physics.loop import RawResult
 
 
 @dataclass(frozen=True)

@@ -8,8 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .config import SimConfig
-from .constants import GRIPPER_KP
+from ..config import SimConfig
 from .poses import Pose
 from .primitives import Step, StepKind
 from .trajectory import Path, plan_path
@@ -51,7 +50,7 @@ class ArmRunner:
         leave the brick slowly (a ramp to zero would cross the brick in its first few ticks
         and shove it, and open at full speed, which tips a brick just let go)."""
         grip = self.config.gripper
-        return self.config.brick.width - grip.force / GRIPPER_KP
+        return self.config.brick.width - grip.force / grip.stiffness
 
     def load(self, steps: list[Step]) -> None:
         self.steps = list(steps)

@@ -24,10 +24,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from . import constants as c
-from .config import SimConfig
+from . import names as c
+from ..config import SimConfig
+from ..resources import ASSETS
 
-ASSETS = Path(__file__).resolve().parents[2] / "assets"
 ARM_DAMPING = 10.0  # N m s/rad: at 1 or 4 walls built by two arms lose bricks (see README)
 PAD_SOLREF = (0.004, 1.0)
 PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
@@ -104,7 +104,7 @@ def _add_gripper(spec: mujoco.MjSpec, config: SimConfig) -> None:
         name=c.GRIPPER_ACTUATOR, target=c.GRIPPER_TENDON, trntype=mujoco.mjtTrn.mjTRN_TENDON
     )
     # Stiff enough that any gap command short of the brick saturates at the force limit.
-    act.set_to_position(kp=c.GRIPPER_KP, kv=40.0)
+    act.set_to_position(kp=grip.stiffness, kv=40.0)
     act.ctrlrange = [0.0, 2 * grip.stroke]
     act.ctrllimited = True
     act.forcerange = [-grip.force, grip.force]

@@ -14,8 +14,8 @@ import json
 import math
 from pathlib import Path
 
-from .config import BrickConfig
-from .errors import ConfigError
+from ..config import BrickConfig
+from ..errors import ConfigError
 from .poses import Pose
 from .structures import BrickTarget
 
