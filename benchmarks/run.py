@@ -14,27 +14,27 @@ import argparse
 import sys
 from pathlib import Path
 
-from pyramid_sim.cli import EXIT_USAGE, _Parser, _whole, check_writable_dir
+from pyramid_sim.cli.args import EXIT_USAGE, Parser, whole
 from pyramid_sim.errors import ConfigError
+from pyramid_sim.output.files import check_writable_dir, write_json_atomic
 from pyramid_sim.output.gl_backend import choose_gl_backend
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = _Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
+    parser = Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
     parser.add_argument("--json", type=Path, metavar="PATH", help="also write the figures here")
-    parser.add_argument("--layers", type=_whole("layers", "1 to 5"), default=4,
+    parser.add_argument("--layers", type=whole("layers", "1 to 5"), default=4,
                         help="pyramid-even size built (default 4: 20 bricks)")
-    parser.add_argument("--frames", type=_whole("frames", "1 to 10000"), default=60,
+    parser.add_argument("--frames", type=whole("frames", "1 to 10000"), default=60,
                         help="frames rendered per setting (default 60)")
-    parser.add_argument("--sweep-builds", type=_whole("sweep builds", "1 to 100"), default=2,
+    parser.add_argument("--sweep-builds", type=whole("sweep builds", "1 to 100"), default=2,
                         help="builds per worker in the sweep figures (default 2)")
-    parser.add_argument("--sweep-rounds", type=_whole("sweep rounds", "1 to 10"), default=2,
+    parser.add_argument("--sweep-rounds", type=whole("sweep rounds", "1 to 10"), default=2,
                         help="alternated 1- and 2-worker sweeps, best of each (default 2)")
     args = parser.parse_args(argv)
     try:
         choose_gl_backend()  # before mujoco is imported
         from pyramid_sim.benchmark import BenchConfig, run_all, table
-        from pyramid_sim.output.results import write_json_atomic
 
         bench = BenchConfig(
             layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds,

@@ -1,15 +1,26 @@
+"""Shared fixtures. Nothing here imports MuJoCo at collection time, so the pure tests
+(`pytest -m "not physics"`) run where MuJoCo cannot be imported; with
+PYRAMID_SIM_BLOCK_MUJOCO=1 it is made unimportable, to prove it."""
+
+import os
+import sys
+
 import pytest
 
-from pyramid_sim.physics.build import prepare, run_build
-from pyramid_sim.cli import main
-from pyramid_sim.config import SimConfig
-from pyramid_sim.core.structures import StructureSpec
+collect_ignore: list[str] = []
+if os.environ.get("PYRAMID_SIM_BLOCK_MUJOCO") == "1":
+    sys.modules["mujoco"] = None  # type: ignore[assignment]  # `import mujoco` now raises
+    collect_ignore.append("physics")  # they import MuJoCo to be collected, and are all physics
 
 _BUILDS: dict = {}
 
 
-def build_once(structure: str, layers: int) -> dict:
+def build_once(structure: str, layers: int):
     """Each default build is simulated once per session and shared by the tests that read it."""
+    from pyramid_sim.config import SimConfig
+    from pyramid_sim.core.structures import StructureSpec
+    from pyramid_sim.physics.build import prepare, run_build
+
     key = (structure, layers)
     if key not in _BUILDS:
         config = SimConfig()
@@ -26,6 +37,7 @@ def built():
 def refused(capsys):
     """Run the command line expecting a refusal: exit status 2 and one error line without a
     traceback, which it returns."""
+    from pyramid_sim.cli import main
 
     def run(argv: list[str]) -> str:
         try:
@@ -42,12 +54,10 @@ def refused(capsys):
 
 @pytest.fixture
 def teleport():
-    """Move a brick (by magazine slot) of a running BuildSim to a position, at rest: how tests
+    """Move a brick (by magazine slot) of a running BuildLoop to a position, at rest: how tests
     knock a brick out of a hand or off the structure."""
 
-    def move(sim, data, slot: int, position: tuple[float, float, float]) -> None:
-        q, v = sim.spawner.qadr[slot], sim.spawner.dadr[slot]
-        data.qpos[q : q + 3] = position
-        data.qvel[v : v + 6] = 0.0
+    def move(loop, data, slot: int, position: tuple[float, float, float]) -> None:
+        loop.handles.place_brick(data, slot, position)
 
     return move

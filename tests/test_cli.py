@@ -31,7 +31,7 @@ def test_plan_prints_the_build_order(capsys):
         (["build", "--friction", "-0.5"], "friction"),
         (["build", "--friction", "nan"], "friction"),
         (["build", "--grip-force", "0"], "grip force"),
-        (["build", "--layers", "9"], "largest reachable"),
+        pytest.param(["build", "--layers", "9"], "largest reachable", marks=pytest.mark.physics),
         (["build", "--pad-friction", "inf"], "pad friction"),
         (["build", "--spawn-jitter", "20"], "spawn jitter"),
         (["build", "--seed", "-1"], "seed"),
@@ -80,7 +80,8 @@ SEED_FIVE = GOALS / "seed_five.json"
         (["--structure", "pyramid", "--goals", str(SEED_FIVE)], "goals"),
         (["--structure", "list", "--goals", "/nonexistent/g.json"], "cannot read"),
         (["--structure", "pyramid", "--arms", "middle"], "arms"),
-        (["--structure", "wall", "--wall-width", "9"], "largest reachable is width"),
+        pytest.param(["--structure", "wall", "--wall-width", "9"], "largest reachable is width",
+                     marks=pytest.mark.physics),
     ],
 )
 def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, refused, args, words):
@@ -99,6 +100,7 @@ def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
     assert {b["arm"] for b in doc["bricks"]} == {"left", "right"}
 
 
+@pytest.mark.physics
 def test_reach_prints_the_largest_size_of_every_structure(capsys):
     assert main(["reach", "--arms", "both"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()

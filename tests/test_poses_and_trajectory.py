@@ -6,7 +6,7 @@ import pytest
 from pyramid_sim.core.poses import (
     Pose, grasp_yaw, symmetric_yaw_error, tcp_quaternion, tcp_rotation, yaw_of,
 )
-from pyramid_sim.output.results import quat_to_matrix
+from pyramid_sim.core.poses import quat_to_matrix
 from pyramid_sim.core.trajectory import min_jerk, plan_segment
 
 

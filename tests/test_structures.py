@@ -3,7 +3,7 @@
 import pytest
 
 from pyramid_sim import ConfigError, create_coordinates, create_coordinates_new, pyramid, pyramid_even
-from pyramid_sim.core.structures import SEED_GAP
+from pyramid_sim.core.seed_pyramids import SEED_GAP
 
 
 def test_seed_create_coordinates_numbers():

@@ -16,7 +16,7 @@ import pytest
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
 from pyramid_sim.sweep.report import summary_table, write_heatmaps
-from pyramid_sim.sweep.runner import RunResult, _row, run_processes
+from pyramid_sim.sweep.runner import RunResult, make_row, run_processes
 from pyramid_sim.sweep.store import COLUMNS, SweepStore
 
 
@@ -76,7 +76,7 @@ def test_bad_sweep_options_are_one_line_and_exit_2(tmp_path, refused, args, word
 
 
 def _spec_rows(config: SweepConfig) -> list[dict]:
-    return [_row(spec, 1.0, None, success=True, bricks_placed=1) for spec in config.runs()]
+    return [make_row(spec, 1.0, None, success=True, bricks_placed=1) for spec in config.runs()]
 
 
 def test_the_csv_survives_a_torn_last_line_and_keeps_one_row_per_run(tmp_path):
@@ -102,7 +102,7 @@ def _fake_run(spec):
         os._exit(3)
     if spec.seed == 2:
         time.sleep(60)
-    return RunResult(spec, _row(spec, 0.0, None, success=True))
+    return RunResult(spec, make_row(spec, 0.0, None, success=True))
 
 
 def test_the_pool_turns_crashes_and_timeouts_into_failed_rows_and_goes_on():
@@ -127,7 +127,7 @@ def test_the_map_and_summary_show_success_and_the_envelope_edge(tmp_path):
     for spec in config.runs():
         heavy = spec.config().brick.mass > 1
         rows.append({k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
-                     for k, v in _row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
+                     for k, v in make_row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
                                       worst_error_xy_mm=math.inf if heavy else 1.5,
                                       max_slip_mm=40.0 if heavy else 0.8).items()})
     table = summary_table(rows, config)

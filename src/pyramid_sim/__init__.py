@@ -1,50 +1,59 @@
-"""pyramid_sim: two Franka Pandas build brick structures in MuJoCo, after Robot DE NIRO."""
+"""pyramid_sim: two robot arms build brick structures in MuJoCo, after Robot DE NIRO.
 
+Importing the package loads only the pure core (no MuJoCo): `plan` works anywhere, `build`
+brings in the physics when it is called.
+"""
+
+from .api import build, plan, settings, structure
+from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig, VideoConfig
 from .core.assignment import Assignment, arrange
-from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig
-from .errors import ConfigError, PyramidSimError, SimulationError, UnreachableError
 from .core.plan import Plan, make_plan
 from .core.poses import Pose
 from .core.scheduler import Action, LockstepScheduler, Task
-from .core.structures import (
-    BrickTarget,
-    StructureSpec,
-    create_coordinates,
-    create_coordinates_new,
-    make_structure,
-    pyramid,
-    pyramid_even,
-    towers,
-    wall,
-    wall_pyramid,
-)
+from .core.seed_pyramids import BrickTarget, create_coordinates, create_coordinates_new, pyramid, pyramid_even
+from .core.brick_manager import towers, wall, wall_pyramid
+from .core.structures import STRUCTURES, StructureSpec
+from .errors import ConfigError, PyramidSimError, UnreachableError
+from .output.result import BrickResult, BuildResult, Tolerances
+from .params import PARAMS, Param
+from .version import __version__
 
 __all__ = [
+    "PARAMS",
+    "STRUCTURES",
     "Action",
     "Assignment",
     "BrickConfig",
+    "BrickResult",
     "BrickTarget",
+    "BuildResult",
     "ConfigError",
     "GripperConfig",
     "LayoutConfig",
     "LockstepScheduler",
     "MotionConfig",
+    "Param",
     "Plan",
     "Pose",
     "PyramidSimError",
     "SimConfig",
-    "SimulationError",
+    "StructureSpec",
     "Task",
+    "Tolerances",
     "UnreachableError",
+    "VideoConfig",
+    "__version__",
     "arrange",
+    "build",
     "create_coordinates",
     "create_coordinates_new",
     "make_plan",
-    "StructureSpec",
+    "plan",
+    "pyramid",
+    "pyramid_even",
+    "settings",
+    "structure",
     "towers",
     "wall",
     "wall_pyramid",
-    "make_structure",
-    "pyramid",
-    "pyramid_even",
 ]

@@ -16,11 +16,12 @@ from typing import Any, Callable
 import mujoco
 import numpy as np
 
-from .physics.build import prepare
 from .config import SimConfig, VideoConfig, check_count
-from .output.results import result_document
-from .physics.loop import BuildSim
 from .core.structures import StructureSpec
+from .output.judge import judge
+from .physics.build import prepare
+from .physics.hooks import BuildHooks
+from .physics.loop import BuildLoop
 from .sweep.grid import RunSpec
 from .sweep.runner import RunResult, run_processes
 
@@ -79,8 +80,8 @@ def bare_rate(config: SimConfig, spec: StructureSpec, seconds: float) -> float:
     """Steps per second of `mj_step` alone on the build's own scene (both arms, table, magazine
     of bricks) from the build's start state, controls held: the limit a build can approach.
     One simulated second runs first, untimed, so bricks that settle fall asleep as in a build."""
-    sim = BuildSim(prepare(spec, config), config)
-    m, d = sim.model, sim.data
+    loop = BuildLoop(prepare(spec, config), config)
+    m, d = loop.model, loop.data
     for _ in range(int(round(1.0 / m.opt.timestep))):
         mujoco.mj_step(m, d)
     n = int(round(seconds / m.opt.timestep))
@@ -90,24 +91,25 @@ def bare_rate(config: SimConfig, spec: StructureSpec, seconds: float) -> float:
     return n / (time.perf_counter() - start)
 
 
-class _Recording:
-    """Every physics step's controls and every spawn of a build, to replay its physics alone."""
+class Recording:
+    """Every physics step's controls and every spawn of a build, to replay its physics alone;
+    and the wall time of every IK solve. Its `hooks` feed it from the loop."""
 
-    def __init__(self, sim: BuildSim) -> None:
+    def __init__(self, loop: BuildLoop) -> None:
         self.ctrl: list[np.ndarray] = []
         self.spawns: list[tuple[int, np.ndarray, np.ndarray]] = []
-        self.qpos0, self.qvel0, self.ctrl0 = sim.data.qpos.copy(), sim.data.qvel.copy(), sim.data.ctrl.copy()
-        spawn_next = sim.spawner.spawn_next
+        self.ik_seconds: list[float] = []
+        d = loop.data
+        self.qpos0, self.qvel0, self.ctrl0 = d.qpos.copy(), d.qvel.copy(), d.ctrl.copy()
+        self.hooks = BuildHooks(
+            on_step=self.step, on_spawn=self.spawned, on_ik=self.ik_seconds.append
+        )
 
-        def spawn_and_note(data: mujoco.MjData) -> int:
-            slot = spawn_next(data)
-            self.spawns.append((len(self.ctrl), data.qpos.copy(), data.qvel.copy()))
-            return slot
-
-        sim.spawner.spawn_next = spawn_and_note  # type: ignore[method-assign]
-
-    def __call__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+    def step(self, loop: BuildLoop, data: mujoco.MjData) -> None:
         self.ctrl.append(data.ctrl.copy())
+
+    def spawned(self, slot: int, data: mujoco.MjData) -> None:
+        self.spawns.append((len(self.ctrl), data.qpos.copy(), data.qvel.copy()))
 
     def replay(self, model: mujoco.MjModel) -> tuple[float, np.ndarray]:
         """Step the recorded controls on a fresh MjData: steps per second, final qpos."""
@@ -124,46 +126,37 @@ class _Recording:
         return len(self.ctrl) / (time.perf_counter() - start), d.qpos.copy()
 
 
-def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any], BuildSim]:
+def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any], BuildLoop]:
     """One headless build, timed whole and per IK solve, then its physics replayed alone."""
-    sim = BuildSim(prepare(spec, config), config)
-    solve_times: list[float] = []
-    step = sim.ik.step
-
-    def timed_step() -> None:
-        t = time.perf_counter()
-        step()
-        solve_times.append(time.perf_counter() - t)
-
-    sim.ik.step = timed_step  # type: ignore[method-assign]
-    recording = _Recording(sim)
-    raw = sim.run(observer=recording, observe_dt=config.timestep)
+    loop = BuildLoop(prepare(spec, config), config)
+    recording = Recording(loop)
+    measured = loop.run(recording.hooks)
     peak_rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-    doc = result_document(raw)
-    replay_rate, replay_qpos = recording.replay(sim.model)
-    ms = np.array(solve_times) * 1000.0
+    result = judge(measured, config)
+    replay_rate, replay_qpos = recording.replay(loop.model)
+    ms = np.array(recording.ik_seconds) * 1000.0
     figures = {
-        "build_success": doc["success"],
-        "bricks_placed": doc["bricks_placed"],
-        "build_physics_steps": raw.physics_steps,
-        "build_steps_per_s": raw.physics_steps / raw.wall_time,
-        "build_real_time_factor": raw.sim_time / raw.wall_time,
+        "build_success": result.success,
+        "bricks_placed": result.bricks_placed,
+        "build_physics_steps": measured.physics_steps,
+        "build_steps_per_s": measured.physics_steps / measured.wall_time,
+        "build_real_time_factor": measured.sim_time / measured.wall_time,
         "replay_steps_per_s": replay_rate,
-        "replay_matches_build": bool(np.array_equal(replay_qpos, sim.data.qpos)),
+        "replay_matches_build": bool(np.array_equal(replay_qpos, loop.data.qpos)),
         "ik_solves": len(ms),
         "ik_solve_ms_median": float(np.median(ms)),
         "ik_solve_ms_p99": float(np.percentile(ms, 99)),
-        "sim_s_per_brick": doc["sim_s_per_brick"],
-        "bricks_per_hour_sim": 3600.0 / doc["sim_s_per_brick"],
-        "max_slip_mm": doc["max_slip_mm"],
-        "max_joint_speed_ratio": doc["max_joint_speed_ratio"],
-        "max_joint_torque_ratio": doc["max_joint_torque_ratio"],
+        "sim_s_per_brick": result.sim_s_per_brick,
+        "bricks_per_hour_sim": 3600.0 / result.sim_s_per_brick,
+        "max_slip_mm": result.max_slip_mm,
+        "max_joint_speed_ratio": result.max_joint_speed_ratio,
+        "max_joint_torque_ratio": result.max_joint_torque_ratio,
         "peak_rss_mb": peak_rss_mb,
     }
-    return figures, sim
+    return figures, loop
 
 
-def video_figures(sim: BuildSim, frames: int) -> dict[str, float]:
+def video_figures(loop: BuildLoop, frames: int) -> dict[str, float]:
     """Render `frames` 640x480 frames of the finished build with and without shadows, and
     encode them with the recorder's settings: ms per frame for each."""
     from .output.video import Recorder
@@ -171,11 +164,11 @@ def video_figures(sim: BuildSim, frames: int) -> dict[str, float]:
     figures: dict[str, float] = {}
     with tempfile.TemporaryDirectory() as tmp:
         for shadows in (True, False):
-            recorder = Recorder(sim.model, VideoConfig(shadows=shadows), Path(tmp) / "bench.mp4")
+            recorder = Recorder(loop.model, VideoConfig(shadows=shadows), Path(tmp) / "bench.mp4")
             try:
-                recorder.render(sim.data)  # the first frame builds GL state: untimed
+                recorder.render(loop.data)  # the first frame builds GL state: untimed
                 start = time.perf_counter()
-                images = [recorder.render(sim.data) for _ in range(frames)]
+                images = [recorder.render(loop.data) for _ in range(frames)]
                 render_ms = (time.perf_counter() - start) * 1000.0 / frames
                 start = time.perf_counter()
                 for image in images:
@@ -213,12 +206,12 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     progress("bare physics")
     figures["bare_steps_per_s"] = bare_rate(config, spec, bench.bare_seconds)
     progress("headless build")
-    build, sim = build_figures(config, spec)
+    build, loop = build_figures(config, spec)
     figures.update(build)
     figures["build_to_bare_ratio"] = figures["build_steps_per_s"] / figures["bare_steps_per_s"]
     figures["build_to_replay_ratio"] = figures["build_steps_per_s"] / figures["replay_steps_per_s"]
     progress("render and encode")
-    figures.update(video_figures(sim, bench.frames))
+    figures.update(video_figures(loop, bench.frames))
     # Alternated rounds, best of each: another tenant's load on this VM lowers a rate, never
     # raises it, and a single pair of runs gave scaling from 1.6 to 1.9.
     for workers in (1, 2):

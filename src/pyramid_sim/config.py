@@ -10,29 +10,15 @@ import math
 from dataclasses import dataclass, field
 
 from .errors import ConfigError
+from .params import check_range, check_section, default
 
 Vec3 = tuple[float, float, float]
-
-
-def check_range(
-    name: str, value: float, low: float, high: float, *, low_open: bool = False
-) -> None:
-    """Raise ConfigError unless low <= value <= high (low < value when low_open)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ConfigError(f"{name}: {value!r} is not a number; accepted {_span(low, high, low_open)}")
-    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
-    if not ok:
-        raise ConfigError(f"{name}: {value} is out of range; accepted {_span(low, high, low_open)}")
 
 
 def check_count(name: str, value: int, low: int, high: int) -> None:
     """Raise ConfigError unless `value` is a whole number from low to high."""
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         raise ConfigError(f"{name}: {value!r} is out of range; accepted {low} to {high}, whole numbers")
-
-
-def _span(low: float, high: float, low_open: bool) -> str:
-    return f"{'(' if low_open else '['}{low:g}, {high:g}]"
 
 
 @dataclass(frozen=True)
@@ -42,15 +28,14 @@ class BrickConfig:
     length: float = 0.192
     width: float = 0.086
     height: float = 0.062
-    mass: float = 0.5
-    friction: float = 1.0  # sliding friction of brick-brick and brick-table contacts
+    mass: float = default("brick", "mass")
+    friction: float = default("brick", "friction")  # of the brick geoms
 
     def __post_init__(self) -> None:
         check_range("brick length", self.length, 0.05, 0.5, low_open=True)
         check_range("brick width", self.width, 0.02, 0.095)
         check_range("brick height", self.height, 0.02, 0.2)
-        check_range("brick mass", self.mass, 0.0, 5.0, low_open=True)
-        check_range("brick friction", self.friction, 0.0, 5.0, low_open=True)
+        check_section("brick", self)
 
     @property
     def size(self) -> Vec3:
@@ -65,16 +50,15 @@ class GripperConfig:
     stroke is widened to 50 mm a finger (100 mm gap), the seed's own "width of the gripper" fix.
     """
 
-    force: float = 20.0  # N, squeeze of each pad on the brick
-    pad_friction: float = 1.0
+    force: float = default("gripper", "force")  # N, squeeze of each pad on the brick
+    pad_friction: float = default("gripper", "pad_friction")
     stroke: float = 0.05  # m per finger
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
     settle_time: float = 0.15  # s after the ramp, for the force to build
     stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:
-        check_range("grip force", self.force, 0.0, 140.0, low_open=True)
-        check_range("pad friction", self.pad_friction, 0.0, 5.0, low_open=True)
+        check_section("gripper", self)
         check_range("finger stroke", self.stroke, 0.045, 0.06)
         check_range("gripper close time", self.close_time, 0.02, 2.0)
         check_range("gripper settle time", self.settle_time, 0.0, 2.0)

@@ -11,7 +11,3 @@ class ConfigError(PyramidSimError, ValueError):
 
 class UnreachableError(PyramidSimError):
     """A target pose cannot be reached by the arm assigned to it."""
-
-
-class SimulationError(PyramidSimError):
-    """The physics went wrong (NaN, warnings) and the run was stopped."""

@@ -71,3 +71,15 @@ def yaw_of(rotation: np.ndarray) -> float:
 def tilt_of(rotation: np.ndarray) -> float:
     """Angle (rad) between a body's z axis and the world z axis."""
     return math.acos(max(-1.0, min(1.0, abs(rotation[2, 2]))))
+
+
+def quat_to_matrix(q: np.ndarray) -> np.ndarray:
+    """Rotation matrix of a quaternion (w, x, y, z), normalised first."""
+    w, x, y, z = q / np.linalg.norm(q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )

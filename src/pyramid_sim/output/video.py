@@ -7,7 +7,6 @@ Files are written under a temporary name and renamed when complete.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 from typing import Callable
 
@@ -16,19 +15,23 @@ import mujoco
 import numpy as np
 
 from ..config import VideoConfig
-
-def _temporary_beside(path: Path) -> Path:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    os.chmod(tmp, 0o644)  # mkstemp makes it private; the finished file is an ordinary one
-    return Path(tmp)
+from ..errors import ConfigError
+from .files import temporary_beside, write_atomic
 
 
-def _renderer(model: mujoco.MjModel, config: VideoConfig) -> mujoco.Renderer:
-    """A renderer with the asked shadows and MSAA. The sample count is read from the model
-    when the GL context is made; it is visual only, so physics is unchanged."""
+def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> mujoco.Renderer:
+    """A renderer with the asked shadows and MSAA (ConfigError when no OpenGL context can be
+    made). The sample count is read from the model when the GL context is made; it is visual
+    only, so physics is unchanged."""
     model.vis.quality.offsamples = config.antialias
-    renderer = mujoco.Renderer(model, height=config.height, width=config.width)
+    try:
+        renderer = mujoco.Renderer(model, height=config.height, width=config.width)
+    except Exception as err:  # GLFW, EGL or OSMesa could not give a context
+        backend = os.environ.get("MUJOCO_GL", "unset")
+        raise ConfigError(
+            f"video: no OpenGL context with MUJOCO_GL={backend} ({err}); accepted egl or osmesa, "
+            "chosen before mujoco is first imported (apt-get install libegl1 libgl1-mesa-dri)"
+        ) from None
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
     return renderer
 
@@ -45,10 +48,9 @@ class Recorder:
     ) -> None:
         self.config = config
         self.path = path
-        self.renderer = _renderer(model, config)
+        self.renderer = make_renderer(model, config)
         self.camera = model.camera(config.camera).id
-        path.parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = _temporary_beside(path)
+        self.tmp = temporary_beside(path)
         self.writer = imageio.get_writer(
             self.tmp, format="FFMPEG", fps=config.fps, codec="libx264", quality=7,
             macro_block_size=2, pixelformat="yuv420p",
@@ -85,19 +87,13 @@ class Recorder:
             self.tmp.unlink(missing_ok=True)
 
 
-def write_still(model: mujoco.MjModel, data: mujoco.MjData, config: VideoConfig, path: Path) -> None:
-    """A PNG of the scene as it is now, written atomically."""
-    renderer = _renderer(model, config)
+def write_still(
+    renderer: mujoco.Renderer, data: mujoco.MjData, config: VideoConfig, path: Path
+) -> None:
+    """A PNG of the scene as it is now, written atomically; closes the renderer."""
     try:
         renderer.update_scene(data, camera=config.camera)
         image = renderer.render()
     finally:
         renderer.close()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = _temporary_beside(path)
-    try:
-        imageio.imwrite(tmp, image, format="PNG")
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    write_atomic(path, lambda tmp: imageio.imwrite(tmp, image, format="PNG"))

@@ -1,16 +1,20 @@
-"""One build from settings to result document: plan, reach check, physics, judgement."""
+"""One build from settings to result: plan, reach check, physics, judgement, and optionally
+its video and a still of the finished structure."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any, Callable
 
 from ..config import SimConfig, VideoConfig
 from ..core.plan import Plan, make_plan
-from .reach import require_reachable
-from ..output.results import result_document
-from .loop import BuildSim, Observer
 from ..core.structures import StructureSpec
+from ..output.judge import judge
+from ..output.result import BuildResult, VideoInfo
+from .hooks import BuildHooks
+from .loop import BuildLoop
+from .reach import require_reachable
 
 
 def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
@@ -23,35 +27,39 @@ def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
 def run_build(
     plan: Plan,
     config: SimConfig,
-    on_placed: Callable[[int], None] | None = None,
-    observer: Observer | None = None,
-    observe_dt: float | None = None,
+    *,
+    on_placed: Callable[[int], Any] | None = None,
     video: tuple[VideoConfig, Path] | None = None,
-    on_frame: Callable[[int], None] | None = None,
+    on_frame: Callable[[int], Any] | None = None,
     snapshot: tuple[VideoConfig, Path] | None = None,
-) -> dict[str, Any]:
-    """Simulate the plan and return its result document; optionally record an MP4 of the
-    whole build and a still of the final structure (rendering is imported only then)."""
-    sim = BuildSim(plan, config)
-    recorder = None
-    if video is not None:
-        from ..output.video import Recorder
-
-        recorder = Recorder(sim.model, video[0], video[1], on_frame)
-        observer, observe_dt = recorder, 1.0 / video[0].fps
+) -> BuildResult:
+    """Simulate the plan and judge it; optionally record an MP4 of the whole build and a still
+    of the final structure (rendering is imported only then, and its GL context is made before
+    any physics runs, so a missing backend costs nothing)."""
+    loop = BuildLoop(plan, config)
+    hooks = BuildHooks(on_placed=on_placed)
+    recorder = still = None
+    if video is not None or snapshot is not None:
+        from ..output.video import Recorder, make_renderer
+    if snapshot is not None:
+        still = make_renderer(loop.model, snapshot[0])
     try:
-        raw = sim.run(on_placed=on_placed, observer=observer, observe_dt=observe_dt)
+        if video is not None:
+            recorder = Recorder(loop.model, video[0], video[1], on_frame)
+            hooks = replace(hooks, on_frame=recorder, frame_dt=1.0 / video[0].fps)
+        measured = loop.run(hooks)
     except BaseException:
         if recorder is not None:
             recorder.abort()
+        if still is not None:
+            still.close()
         raise
+    result = judge(measured, config)
     if recorder is not None:
         recorder.finish()
-    document = result_document(raw)
-    if recorder is not None:
-        document["video"] = {"path": str(video[1]), "frames": recorder.frames, "fps": video[0].fps}
-    if snapshot is not None:
+        result = replace(result, video=VideoInfo(str(video[1]), recorder.frames, video[0].fps))
+    if still is not None and snapshot is not None:
         from ..output.video import write_still
 
-        write_still(sim.model, sim.data, snapshot[0], snapshot[1])
-    return document
+        write_still(still, loop.data, snapshot[0], snapshot[1])
+    return result

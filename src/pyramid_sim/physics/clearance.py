@@ -14,12 +14,7 @@ import numpy as np
 
 from . import names as c
 
-# The links that can meet the other arm over the table: from the elbow out. The bases stand
-# 0.5 m apart, and the base and shoulder links turn about their own spot.
-IK_GUARDED_BODIES = (
-    "panda_link3", "panda_link4", "panda_link5", "panda_link6", "panda_link7", "panda_hand",
-)
-MEASURED_BODIES = IK_GUARDED_BODIES + c.FINGER_BODIES
+MEASURED_BODIES = c.IK_GUARDED_BODIES + c.FINGER_BODIES
 FAR = 1.0  # m: approaches farther than this are not measured exactly
 
 

@@ -14,7 +14,8 @@ import mujoco
 import numpy as np
 
 from . import names as c
-from .clearance import IK_GUARDED_BODIES, arm_geoms
+from .clearance import arm_geoms
+from .handles import arm_dof_addresses, arm_qpos_addresses
 from ..config import SimConfig
 from ..errors import UnreachableError
 from ..core.poses import Pose, tcp_quaternion, yaw_of
@@ -56,16 +57,6 @@ class _BrakingLimit(mink.Limit):
         return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
 
 
-def arm_qpos_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
-    """qpos addresses of one arm's seven joints in `model`."""
-    return np.array([model.joint(c.prefixed(arm, j)).qposadr[0] for j in c.ARM_JOINTS])
-
-
-def arm_dof_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
-    """dof addresses of one arm's seven joints in `model`."""
-    return np.array([model.joint(c.prefixed(arm, j)).dofadr[0] for j in c.ARM_JOINTS])
-
-
 class DualArmIK:
     """One mink problem for both arms: a TCP frame task per arm, a light posture task, joint
     position, velocity and acceleration limits, and a minimum distance between the arms."""
@@ -101,7 +92,7 @@ class DualArmIK:
             for arm in c.ARMS
             for j, v in zip(c.ARM_JOINTS, c.JOINT_VELOCITY_LIMITS)
         }
-        guarded = [arm_geoms(self.model, arm, IK_GUARDED_BODIES) for arm in c.ARMS]
+        guarded = [arm_geoms(self.model, arm, c.IK_GUARDED_BODIES) for arm in c.ARMS]
         self.limits = [
             mink.ConfigurationLimit(self.model),
             mink.VelocityLimit(self.model, velocities),

@@ -9,6 +9,13 @@ FINGER_JOINTS: Final = ("panda_finger_joint1", "panda_finger_joint2")
 TCP_SITE: Final = "tcp"
 HAND_BODY: Final = "panda_hand"
 FINGER_BODIES: Final = ("panda_leftfinger", "panda_rightfinger")
+# The links whose positions tell whether an arm is inside the shared zone.
+ZONE_BODIES: Final = (HAND_BODY, "panda_link6", "panda_link4")
+# The links that can meet the other arm over the table, from the elbow out: the IK keeps them
+# apart. The bases stand 0.5 m apart, and the base and shoulder links turn about their own spot.
+IK_GUARDED_BODIES: Final = (
+    "panda_link3", "panda_link4", "panda_link5", "panda_link6", "panda_link7", HAND_BODY,
+)
 PAD_GEOMS: Final = ("left_pad", "right_pad")
 GRIPPER_ACTUATOR: Final = "gripper"
 GRIPPER_TENDON: Final = "finger_gap"

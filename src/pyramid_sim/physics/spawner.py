@@ -8,7 +8,7 @@ import math
 import mujoco
 import numpy as np
 
-from . import names as c
+from .handles import SceneHandles
 from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
 
 ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
@@ -22,8 +22,7 @@ class Spawner:
 
     def __init__(
         self,
-        model: mujoco.MjModel,
-        n_bricks: int,
+        handles: SceneHandles,
         spawn: Pose,
         clear_radius: float,
         jitter: float = 0.0,
@@ -33,15 +32,14 @@ class Spawner:
         self.clear_radius = clear_radius
         self.jitter = jitter
         self.rng = np.random.default_rng(seed)
-        self.qadr = [model.joint(c.brick_name(i) + "joint").qposadr[0] for i in range(n_bricks)]
-        self.dadr = [model.joint(c.brick_name(i) + "joint").dofadr[0] for i in range(n_bricks)]
-        self.body = [model.body(c.brick_name(i) + "brick").id for i in range(n_bricks)]
+        self.handles = handles
+        self.body = handles.brick_body
         self.next_slot = 0
         self.current: int | None = None  # slot on the spawn spot, not yet taken
 
     @property
     def remaining(self) -> int:
-        return len(self.qadr) - self.next_slot
+        return self.handles.n_bricks - self.next_slot
 
     def brick_ready(self) -> bool:
         return self.current is not None
@@ -77,12 +75,12 @@ class Spawner:
     def spawn_next(self, data: mujoco.MjData) -> int:
         """Teleport the next parked brick onto the spot, at rest; returns its slot."""
         slot = self.next_slot
-        q, v = self.qadr[slot], self.dadr[slot]
         yaw = self.spawn.yaw
         offset = self.rng.uniform(-self.jitter, self.jitter, size=2) if self.jitter else (0.0, 0.0)
-        data.qpos[q : q + 3] = self.spawn.position + (offset[0], offset[1], 0.0)
-        data.qpos[q + 3 : q + 7] = [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)]
-        data.qvel[v : v + 6] = 0.0
+        self.handles.place_brick(
+            data, slot, self.spawn.position + (offset[0], offset[1], 0.0),
+            [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)],
+        )
         self.next_slot += 1
         self.current = slot
         return slot

@@ -9,41 +9,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Callable
 
-from ..config import SimConfig, check_range
+from ..config import SimConfig
+from ..params import PARAMS, check_range, param
 from ..errors import ConfigError
 from ..core.plan import ARM_CHOICES
 from ..core.structures import StructureSpec
 
 MAX_POINTS_PER_AXIS = 50
 MAX_RUNS = 10_000
-
-
-def _brick_friction(c: SimConfig, v: float) -> SimConfig:
-    return replace(c, brick=replace(c.brick, friction=v))
-
-
-def _brick_mass(c: SimConfig, v: float) -> SimConfig:
-    return replace(c, brick=replace(c.brick, mass=v))
-
-
-def _grip_force(c: SimConfig, v: float) -> SimConfig:
-    return replace(c, gripper=replace(c.gripper, force=v))
-
-
-def _pad_friction(c: SimConfig, v: float) -> SimConfig:
-    return replace(c, gripper=replace(c.gripper, pad_friction=v))
-
-
-# The sweepable parameters, in the order of the CSV columns and the plot's axes: the CSV name,
-# the label a person reads, how it is applied, and its default.
-PARAMETERS: dict[str, tuple[str, Callable[[SimConfig, float], SimConfig], float]] = {
-    "friction": ("brick friction", _brick_friction, SimConfig().brick.friction),
-    "brick_mass": ("brick mass (kg)", _brick_mass, SimConfig().brick.mass),
-    "grip_force": ("grip force (N)", _grip_force, SimConfig().gripper.force),
-    "pad_friction": ("pad friction", _pad_friction, SimConfig().gripper.pad_friction),
-}
 
 
 def value_text(value: float) -> str:
@@ -58,13 +32,13 @@ class Axis:
 
     @property
     def label(self) -> str:
-        return PARAMETERS[self.name][0]
+        return param(self.name).label
 
 
 def parse_axis(name: str, text: str) -> Axis:
     """`start:stop:count` (evenly spaced, both ends included) or `a,b,c`; every value is checked
     by the configuration class that owns it. ConfigError names the parameter and the range."""
-    label = PARAMETERS[name][0]
+    label = param(name).label
     form = f"accepted start:stop:count (count 1 to {MAX_POINTS_PER_AXIS}) or a comma list"
     text = text.strip()
     try:
@@ -91,11 +65,10 @@ def parse_axis(name: str, text: str) -> Axis:
     values = tuple(round(v, 9) for v in values)
     if len(set(values)) != len(values):
         raise ConfigError(f"{label}: repeated values in {text!r}; {form}")
-    apply = PARAMETERS[name][1]
     for v in values:
         if not math.isfinite(v):
             raise ConfigError(f"{label}: {v} is not a finite number; {form}")
-        apply(SimConfig(), v)  # the owning dataclass refuses an out-of-range value
+        param(name).check(v)
     return Axis(name, values)
 
 
@@ -105,14 +78,14 @@ class RunSpec:
 
     structure: StructureSpec
     arms: str
-    params: tuple[tuple[str, float], ...]  # in PARAMETERS order
+    params: tuple[tuple[str, float], ...]  # in PARAMS order
     seed: int
     spawn_jitter_mm: float
 
     def config(self, base: SimConfig | None = None) -> SimConfig:
         config = base or SimConfig()
         for name, value in self.params:
-            config = PARAMETERS[name][1](config, value)
+            config = param(name).apply(config, value)
         layout = replace(config.layout, spawn_jitter_mm=self.spawn_jitter_mm)
         return replace(config, layout=layout, seed=self.seed)
 
@@ -163,10 +136,10 @@ class SweepConfig:
     def full_axes(self) -> tuple[Axis, ...]:
         """All sweepable parameters in their fixed order, the ones not given at their default."""
         given = {a.name: a for a in self.axes}
-        return tuple(given.get(n, Axis(n, (d,))) for n, (_, _, d) in PARAMETERS.items())
+        return tuple(given.get(p.name, Axis(p.name, (p.default,))) for p in PARAMS)
 
     def plot_axes(self) -> tuple[Axis, Axis | None]:
-        """The two main axes of the map: the first two (in PARAMETERS order) with more than one
+        """The two main axes of the map: the first two (in PARAMS order) with more than one
         value; other varying axes are folded into each cell."""
         full = self.full_axes()
         varying = [a for a in full if len(a.values) > 1]

@@ -6,15 +6,14 @@ Reads only CSV rows (text), so a report can be redrawn from `sweep.csv` alone.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..output.files import write_atomic
+from ..output.result import Tolerances
 from .grid import Axis, SweepConfig, value_text
 from .store import row_key
 
-PLACE_TOLERANCE_MM = 5.0  # results.Tolerances.xy_mm: the error scale of the map
 SLIP_SCALE_MM = 5.0
 
 
@@ -101,7 +100,7 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         ("success rate", lambda s: s.rate, "RdYlGn", 0.0, 1.0,
          lambda s: f"{s.succeeded}/{s.runs}"),
         ("worst placement error (mm)", lambda s: s.worst_error_mm, "viridis", 0.0,
-         PLACE_TOLERANCE_MM, lambda s: _fmt(s.worst_error_mm)),
+         Tolerances().xy_mm, lambda s: _fmt(s.worst_error_mm)),
         ("max slip in the hand (mm)", lambda s: s.max_slip_mm, "viridis", 0.0, SLIP_SCALE_MM,
          lambda s: _fmt(s.max_slip_mm)),
     ]
@@ -141,16 +140,7 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         f"jitter {config.spawn_jitter_mm:g} mm; {fixed}"
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".png", dir=path.parent)
-    os.close(fd)
     try:
-        fig.savefig(tmp, format="png", dpi=110)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+        write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", dpi=110))
     finally:
         plt.close(fig)
-

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
-from ..output.results import write_json_atomic
+from ..output.files import write_json_atomic
 from .grid import SweepConfig, value_text
 from .report import grid_rows, summary_table, write_heatmaps
 from .runner import RunResult, run_processes, run_ray
@@ -39,8 +39,8 @@ def run_sweep(
         on_skip(len(config.runs()) - len(todo))
 
     def record(result: RunResult) -> None:
-        if result.document is not None:
-            write_json_atomic(out / "runs" / run_file_name(result), result.document)
+        if result.build is not None:
+            write_json_atomic(out / "runs" / run_file_name(result), result.build.to_json())
         store.append(result.row)
         if on_row is not None:
             on_row(result)

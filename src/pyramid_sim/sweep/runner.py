@@ -18,27 +18,25 @@ from typing import Any, Callable, Iterable
 
 from ..errors import ConfigError
 from .grid import RunSpec
-from .store import KEY_COLUMNS
+from ..output.result import BuildResult
+from .store import KEY_COLUMNS, RESULT_FIELDS
 
 
 @dataclass(frozen=True)
 class RunResult:
-    """A finished run: its CSV row and, when the build ran to its end, its result document."""
+    """A finished run: its CSV row and, when the build ran to its end, its BuildResult."""
 
     spec: RunSpec
     row: dict[str, Any]
-    document: dict[str, Any] | None = None
+    build: BuildResult | None = None
 
 
 OnResult = Callable[[RunResult], None]
 
 
-def _row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> dict[str, Any]:
+def make_row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> dict[str, Any]:
     row: dict[str, Any] = dict(zip(KEY_COLUMNS, spec.key()))
-    row.update(
-        success=False, bricks_placed=None, bricks_total=None, drops=None, max_slip_mm=None,
-        worst_error_xy_mm=None, sim_time_s=None,
-    )
+    row.update({name: None for name in RESULT_FIELDS}, success=False)
     row.update(results)
     row["wall_time_s"] = round(wall, 3)
     row["failure_reason"] = " ".join(reason.split()) if reason else None  # one line in the CSV
@@ -46,7 +44,7 @@ def _row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> dict
 
 
 def failed(spec: RunSpec, reason: str, wall: float) -> RunResult:
-    return RunResult(spec, _row(spec, wall, reason))
+    return RunResult(spec, make_row(spec, wall, reason))
 
 
 def run_one(spec: RunSpec) -> RunResult:
@@ -54,26 +52,20 @@ def run_one(spec: RunSpec) -> RunResult:
     failure: an exception becomes a failed row naming it."""
     start = time.perf_counter()
     try:
-        from ..physics.build import run_build
         from ..core.plan import make_plan
+        from ..physics.build import run_build
 
         config = spec.config()
-        document = run_build(make_plan(spec.structure, config, spec.arms), config)
+        result = run_build(make_plan(spec.structure, config, spec.arms), config)
     except Exception as err:  # the sweep goes on; the row says what happened
         return failed(spec, f"crashed: {type(err).__name__}: {err}", time.perf_counter() - start)
-    row = _row(
+    row = make_row(
         spec,
         time.perf_counter() - start,
-        document["failure_reason"],
-        success=document["success"],
-        bricks_placed=document["bricks_placed"],
-        bricks_total=document["bricks_total"],
-        drops=document["drops"],
-        max_slip_mm=document["max_slip_mm"],
-        worst_error_xy_mm=document["worst_error_xy_mm"],
-        sim_time_s=document["sim_time_s"],
+        result.failure_reason,
+        **{name: getattr(result, name) for name in RESULT_FIELDS},
     )
-    return RunResult(spec, row, document)
+    return RunResult(spec, row, result)
 
 
 # --- process backend ---------------------------------------------------------------------------

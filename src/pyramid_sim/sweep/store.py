@@ -15,20 +15,15 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ConfigError
-from .grid import PARAMETERS
+from ..params import PARAMS
 
-KEY_COLUMNS = ("structure", "size", "arms", *PARAMETERS, "spawn_jitter_mm", "seed")
-RESULT_COLUMNS = (
-    "success",
-    "bricks_placed",
-    "bricks_total",
-    "drops",
-    "max_slip_mm",
-    "worst_error_xy_mm",
+KEY_COLUMNS = ("structure", "size", "arms", *(p.name for p in PARAMS), "spawn_jitter_mm", "seed")
+# BuildResult fields copied into each row, then the run's own wall time and failure reason.
+RESULT_FIELDS = (
+    "success", "bricks_placed", "bricks_total", "drops", "max_slip_mm", "worst_error_xy_mm",
     "sim_time_s",
-    "wall_time_s",
-    "failure_reason",
 )
+RESULT_COLUMNS = (*RESULT_FIELDS, "wall_time_s", "failure_reason")
 COLUMNS = KEY_COLUMNS + RESULT_COLUMNS
 
 

@@ -2,12 +2,16 @@
 
 import mujoco
 import numpy as np
+import pytest
 
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.plan import make_plan
+from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner
 from pyramid_sim.core.structures import StructureSpec
+
+pytestmark = pytest.mark.physics
 
 
 def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
@@ -15,11 +19,12 @@ def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
     plan = make_plan(StructureSpec("pyramid", layers=3), config)
     scene = build_scene(config, n)
     data = mujoco.MjData(scene.model)
-    spawner = Spawner(scene.model, n, plan.spawn, clear_radius=0.16, jitter=jitter, seed=seed)
+    handles = SceneHandles(scene.model, n)
+    spawner = Spawner(handles, plan.spawn, clear_radius=0.16, jitter=jitter, seed=seed)
     out = []
     for _ in range(n):
         slot = spawner.spawn_next(data)
-        q = spawner.qadr[slot]
+        q = handles.brick_qpos[slot]
         out.append(data.qpos[q : q + 3].copy())
     return np.array(out) - plan.spawn.position
 

@@ -5,11 +5,14 @@ import numpy as np
 import pytest
 
 from pyramid_sim.physics import names as c
-from pyramid_sim.physics.clearance import IK_GUARDED_BODIES, arm_geoms
+from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.config import MotionConfig, SimConfig
 from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.core.poses import Pose
 from pyramid_sim.core.primitives import clear_pose
+from pyramid_sim.physics.handles import SceneHandles
+
+pytestmark = pytest.mark.physics
 
 
 def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> float:
@@ -18,8 +21,8 @@ def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> f
     for arm in c.ARMS:
         ik.solve(arm, clear_pose(arm, config.motion))
     model, data = ik.model, ik.configuration.data
-    pairs = [(a, b) for a in arm_geoms(model, "left", IK_GUARDED_BODIES)
-             for b in arm_geoms(model, "right", IK_GUARDED_BODIES)]
+    pairs = [(a, b) for a in arm_geoms(model, "left", c.IK_GUARDED_BODIES)
+             for b in arm_geoms(model, "right", c.IK_GUARDED_BODIES)]
     fromto = np.zeros(6)
     for arm in c.ARMS:
         ik.set_target(arm, Pose(0.5, 0.0, 0.3, 0.0))
@@ -50,17 +53,16 @@ def test_the_closest_approach_is_measured_from_the_physics():
     data = mujoco.MjData(model)
     ik = DualArmIK(SimConfig())
     q = {arm: ik.solve(arm, clear_pose(arm, MotionConfig())) for arm in c.ARMS}
+    handles = SceneHandles(model, 1)
     for arm in c.ARMS:
-        for joint, value in zip(c.ARM_JOINTS, q[arm]):
-            data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+        data.qpos[handles.arm_qpos[arm]] = q[arm]
     mujoco.mj_forward(model, data)
     apart = ArmClearance(model, data)
     apart.update()
     assert 0.3 < apart.closest < 1.0  # 0.44 m, elbow to fingertips
     reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]
     for arm, yaw in (("left", -1.57), ("right", 1.57)):
-        for joint, value in zip(c.ARM_JOINTS, [yaw, *reach]):
-            data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+        data.qpos[handles.arm_qpos[arm]] = [yaw, *reach]
     mujoco.mj_forward(model, data)
     apart.update()
     assert apart.closest < 0.0 and apart.closest_time == 0.0

@@ -11,8 +11,9 @@ import pytest
 from pyramid_sim.physics.build import prepare
 from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
-from pyramid_sim.output.results import result_document
-from pyramid_sim.physics.loop import BuildSim
+from pyramid_sim.output.judge import judge
+from pyramid_sim.physics.hooks import BuildHooks
+from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.core.structures import StructureSpec
 
 FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of everyone's way
@@ -20,21 +21,25 @@ FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of ev
 pytestmark = pytest.mark.physics
 
 
-def _two_brick_build(config: SimConfig = SimConfig()) -> BuildSim:
-    return BuildSim(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+def _two_brick_build(config: SimConfig = SimConfig()) -> BuildLoop:
+    return BuildLoop(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+
+
+def _run(loop: BuildLoop, on_step) -> dict:
+    """Build with a fault injected after every physics step; the result as result.json has it."""
+    return judge(loop.run(BuildHooks(on_step=on_step)), loop.config).to_json()
 
 
 def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(teleport):
-    sim = _two_brick_build()
     knocked = []
 
-    def knock(model, data):  # once, while the left arm carries its brick out to its clear pose
-        carry, step = sim.carry["left"], sim.runners["left"].current
+    def knock(loop, data):  # once, while the left arm carries its brick out to its clear pose
+        carry, step = loop.custody.carry["left"], loop.step_of("left")
         if not knocked and carry is not None and step is not None and step.name == "clear":
-            teleport(sim, data, carry.slot, FLOOR_AWAY)
+            teleport(loop, data, carry.slot, FLOOR_AWAY)
             knocked.append(carry.slot)
 
-    doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
+    doc = _run(_two_brick_build(), knock)
     assert knocked == [0]
     assert doc["success"], doc["failure_reason"]
     assert doc["bricks_placed"] == 2 and doc["drops"] == 1 and doc["recoveries"] == 1
@@ -49,15 +54,15 @@ def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure
 
 
 def test_a_brick_knocked_off_the_structure_is_reported(teleport):
-    sim = _two_brick_build()
     knocked = []
 
-    def knock(model, data):  # the first placed brick, pushed off once the second is picked
-        if not knocked and sim.knock_watch.slots and sim.carry["right"] is not None:
-            teleport(sim, data, sim.knock_watch.slots[0], FLOOR_AWAY)
+    def knock(loop, data):  # the first placed brick, pushed off once the second is picked
+        custody = loop.custody
+        if not knocked and custody.knock_watch.slots and custody.carry["right"] is not None:
+            teleport(loop, data, custody.knock_watch.slots[0], FLOOR_AWAY)
             knocked.append(data.time)
 
-    doc = result_document(sim.run(observer=knock, observe_dt=sim.config.timestep))
+    doc = _run(_two_brick_build(), knock)
     assert knocked
     assert not doc["success"] and "knocked off" in doc["failure_reason"]
     (knock_event,) = doc["knocked_off"]
@@ -81,16 +86,16 @@ def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_
 
 def test_a_diverging_step_stops_the_build_at_once_naming_the_warning(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to MUJOCO_LOG.TXT in the cwd
-    sim = _two_brick_build()
+    loop = _two_brick_build()
 
-    def poison(model, data):
+    def poison(loop, data):
         if abs(data.time - 1.0) < 1e-9:
-            data.qvel[sim.spawner.dadr[3]] = np.nan
+            data.qvel[loop.handles.brick_dofs[3]] = np.nan
 
-    doc = result_document(sim.run(observer=poison, observe_dt=sim.config.timestep))
+    doc = _run(loop, poison)
     assert not doc["success"]
     assert "MuJoCo warning" in doc["failure_reason"] and "mjWARN_BADQACC" in doc["failure_reason"]
-    assert doc["sim_time_s"] == pytest.approx(1.0 + sim.config.timestep)  # the very next step
+    assert doc["sim_time_s"] == pytest.approx(1.0 + loop.config.timestep)  # the very next step
     assert doc["mujoco_warnings"]["mjWARN_BADQACC"] >= 1
     json.dumps(doc, allow_nan=False)  # no NaN or Infinity leaks into result.json
 

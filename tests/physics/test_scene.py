@@ -2,10 +2,14 @@
 
 import mujoco
 import numpy as np
+import pytest
 
 from pyramid_sim.physics import names as c
 from pyramid_sim.config import BrickConfig, SimConfig
+from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
+
+pytestmark = pytest.mark.physics
 
 
 def test_scene_holds_two_pandas_a_table_and_the_magazine():
@@ -32,10 +36,9 @@ def test_noisy_commands_for_one_second_raise_no_warning():
     model = build_scene(SimConfig(), 4).model
     data = mujoco.MjData(model)
     rng = np.random.default_rng(0)
-    home = np.array(c.HOME_QPOS)
+    handles = SceneHandles(model, 4)
     for arm in c.ARMS:
-        for j, q in zip(c.ARM_JOINTS, home):
-            data.qpos[model.joint(c.prefixed(arm, j)).qposadr[0]] = q
+        data.qpos[handles.arm_qpos[arm]] = c.HOME_QPOS
     mujoco.mj_forward(model, data)
     low, high = model.actuator_ctrlrange.T
     for _ in range(int(1.0 / model.opt.timestep)):
@@ -46,8 +49,7 @@ def test_noisy_commands_for_one_second_raise_no_warning():
 
 
 def _arm_pose(model: mujoco.MjModel, data: mujoco.MjData, arm: str, q: list[float]) -> None:
-    for joint, value in zip(c.ARM_JOINTS, q):
-        data.qpos[model.joint(c.prefixed(arm, joint)).qposadr[0]] = value
+    data.qpos[SceneHandles(model, 1).arm_qpos[arm]] = q
 
 
 def test_arm_arm_contact_sensor_counts_only_contacts_between_the_arms():
@@ -72,8 +74,9 @@ def test_resting_bricks_sleep_and_a_moved_brick_wakes():
         mujoco.mj_step(model, data)
     trees = [model.body_treeid[model.body(c.brick_name(i) + "brick").id] for i in range(2)]
     assert all(data.tree_asleep[t] >= 0 for t in trees)
-    q = model.joint(c.brick_name(0) + "joint").qposadr[0]
-    data.qpos[q : q + 3] = [0.49, 0.01, 0.2]  # as the spawner does: 9 cm above the table
+    handles = SceneHandles(model, 2)
+    handles.place_brick(data, 0, [0.49, 0.01, 0.2])  # as the spawner does: 9 cm above the table
+    q = handles.brick_qpos[0]
     for _ in range(200):
         mujoco.mj_step(model, data)
     assert abs(data.qpos[q + 2] - 0.11) < 1e-3  # it fell onto the table

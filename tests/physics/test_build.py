@@ -10,7 +10,8 @@ from pyramid_sim.resources import GOALS
 
 from pyramid_sim.physics.build import prepare
 from pyramid_sim.config import SimConfig
-from pyramid_sim.physics.loop import BuildSim
+from pyramid_sim.physics.hooks import BuildHooks
+from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.core.structures import StructureSpec
 
 pytestmark = pytest.mark.physics
@@ -21,40 +22,40 @@ BUILDS = [("pyramid-even", 4, 20), ("pyramid", 4, 10)]
 @pytest.mark.parametrize("structure, layers, count", BUILDS)
 def test_every_brick_rests_on_its_target(built, structure, layers, count):
     result = built(structure, layers)
-    bricks = result["bricks"]
+    bricks = result.bricks
     assert len(bricks) == count
     for b in bricks:
-        assert b["final"] is not None, f"brick {b['index']} was never picked"
-        x, y, z = b["final"]["position"]
-        tx, ty, tz = b["target"]["position"]
+        assert b.final is not None, f"brick {b.index} was never picked"
+        x, y, z = b.final.position
+        tx, ty, tz = b.target.position
         assert abs(x - tx) < 0.005 and abs(y - ty) < 0.005, b
         assert abs(z - tz) < 0.003, b
-        assert b["yaw_error_deg"] < 3.0, b
-        assert b["tilt_deg"] < 2.0, b
-        assert not b["dropped"], b
-    assert result["bricks_placed"] == count
-    assert result["success"], result["failure_reason"]
+        assert b.yaw_error_deg < 3.0, b
+        assert b.tilt_deg < 2.0, b
+        assert not b.dropped, b
+    assert result.bricks_placed == count
+    assert result.success, result.failure_reason
 
 
 @pytest.mark.parametrize("structure, layers, count", BUILDS)
 def test_build_is_clean(built, structure, layers, count):
     result = built(structure, layers)
-    assert result["drops"] == 0
-    assert result["arm_arm_contacts"] == 0
-    assert result["shared_zone_violations"] == 0
-    assert result["finger_limit_excess_mm"] < 0.1  # soft-constraint give only
-    assert result["max_joint_speed_ratio"] <= 1.0
-    assert result["max_joint_torque_ratio"] <= 1.0
-    assert result["mujoco_warnings"] == {}
-    assert result["max_slip_mm"] < 2.0
-    assert all(b["slip_mm"] is not None for b in result["bricks"])
+    assert result.drops == 0
+    assert result.arm_arm_contacts == 0
+    assert result.shared_zone_violations == 0
+    assert result.finger_limit_excess_mm < 0.1  # soft-constraint give only
+    assert result.max_joint_speed_ratio <= 1.0
+    assert result.max_joint_torque_ratio <= 1.0
+    assert result.mujoco_warnings == {}
+    assert result.max_slip_mm < 2.0
+    assert all(b.slip_mm is not None for b in result.bricks)
 
 
 def test_same_settings_give_identical_final_poses():
     config = SimConfig()
     plan = prepare(StructureSpec("pyramid", layers=2), config)
-    first = BuildSim(plan, config).run()
-    second = BuildSim(plan, config).run()
+    first = BuildLoop(plan, config).run()
+    second = BuildLoop(plan, config).run()
     assert first.failure is None
     np.testing.assert_array_equal(first.final_pos, second.final_pos)
     np.testing.assert_array_equal(first.final_quat, second.final_quat)
@@ -70,8 +71,8 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     base = SimConfig()
     config = replace(base, gripper=replace(base.gripper, force=1.0), max_sim_time=60.0)
     result = run_build(prepare(StructureSpec("pyramid", layers=1), config), config)
-    assert not result["success"]
-    assert result["bricks_placed"] == 0
+    assert not result.success
+    assert result.bricks_placed == 0
 
 
 def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reason(teleport):
@@ -80,22 +81,21 @@ def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reaso
     and says why (naming the drop) instead of running to the time limit."""
     from dataclasses import replace
 
-    from pyramid_sim.output.results import result_document
-    from pyramid_sim.physics.loop import BuildSim
+    from pyramid_sim.output.judge import judge
 
     config = replace(SimConfig(), stall_time=15.0)
-    sim = BuildSim(prepare(StructureSpec("pyramid", layers=2), config), config)
+    loop = BuildLoop(prepare(StructureSpec("pyramid", layers=2), config), config)
 
-    def knock(model, data):
-        carry, step = sim.carry["left"], sim.runners["left"].current
+    def knock(loop, data):
+        carry, step = loop.custody.carry["left"], loop.step_of("left")
         if carry is not None and step is not None and step.name == "clear":
-            teleport(sim, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
+            teleport(loop, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
 
-    result = result_document(sim.run(observer=knock, observe_dt=config.timestep))
-    assert not result["success"]
-    reason = result["failure_reason"]
+    result = judge(loop.run(BuildHooks(on_step=knock)), config)
+    assert not result.success
+    reason = result.failure_reason
     assert "stalled" in reason and "spawn spot" in reason and "brick 0 slipped out" in reason
-    assert result["sim_time_s"] < 60.0
+    assert result.sim_time_s < 60.0
 
 
 def test_bricks_spawned_off_the_spot_are_still_built():
@@ -108,10 +108,10 @@ def test_bricks_spawned_off_the_spot_are_still_built():
     base = SimConfig()
     config = replace(base, layout=replace(base.layout, spawn_jitter_mm=2.0), seed=1)
     result = run_build(prepare(StructureSpec("pyramid-even", layers=4), config), config)
-    assert result["success"], result["failure_reason"]
-    assert result["bricks_placed"] == 20
-    assert result["worst_error_xy_mm"] < 5.0
-    assert result["max_slip_mm"] < 2.0
+    assert result.success, result.failure_reason
+    assert result.bricks_placed == 20
+    assert result.worst_error_xy_mm < 5.0
+    assert result.max_slip_mm < 2.0
 
 
 SEED_FIVE = GOALS / "seed_five.json"
@@ -145,12 +145,12 @@ def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
     config = SimConfig()
     plan = prepare(_brick_manager_spec(name), config, arms)
     result = run_build(plan, config)
-    assert result["success"], result["failure_reason"]
-    assert result["bricks_placed"] == len(plan.bricks)
-    for b in result["bricks"]:
-        x, y, z = b["final"]["position"]
-        tx, ty, tz = b["target"]["position"]
+    assert result.success, result.failure_reason
+    assert result.bricks_placed == len(plan.bricks)
+    for b in result.bricks:
+        x, y, z = b.final.position
+        tx, ty, tz = b.target.position
         assert math.hypot(x - tx, y - ty) < 0.005 and abs(z - tz) < 0.003, b
-        assert b["yaw_error_deg"] < 3.0 and b["tilt_deg"] < 2.0, b
-    assert result["max_joint_speed_ratio"] <= 1.0
-    assert {b["arm"] for b in result["bricks"]} == ({"left", "right"} if arms == "both" else {arms})
+        assert b.yaw_error_deg < 3.0 and b.tilt_deg < 2.0, b
+    assert result.max_joint_speed_ratio <= 1.0
+    assert {b.arm for b in result.bricks} == ({"left", "right"} if arms == "both" else {arms})

@@ -1,0 +1,128 @@
+"""The Python API for notebooks and scripts: `plan` (pure) and `build` (physics).
+
+    import pyramid_sim
+    result = pyramid_sim.build("pyramid-even", layers=2, friction=0.8)
+    result.success, result.bricks_placed, [b.error_xy_mm for b in result.bricks]
+
+Settings are keywords: the parameter table's names (friction, brick_mass, grip_force,
+pad_friction), spawn_jitter_mm and seed, or a whole `config=SimConfig(...)`. Everything is
+validated before any physics runs; a bad value raises ConfigError naming its accepted range.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+from .config import SimConfig, VideoConfig
+from .core.plan import Plan, make_plan
+from .core.structures import StructureSpec
+from .errors import ConfigError
+from .output.result import BuildResult
+from .params import BY_NAME
+
+RUN_SETTINGS = ("spawn_jitter_mm", "seed")
+
+
+def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
+    """`config` (default SimConfig()) with the named settings applied; ConfigError for a name
+    that is not a setting, listing those that are."""
+    config = config or SimConfig()
+    for name, value in values.items():
+        if name in BY_NAME:
+            config = BY_NAME[name].apply(config, value)
+        elif name == "spawn_jitter_mm":
+            config = replace(config, layout=replace(config.layout, spawn_jitter_mm=value))
+        elif name == "seed":
+            config = replace(config, seed=value)
+        else:
+            accepted = ", ".join([*BY_NAME, *RUN_SETTINGS, "config"])
+            raise ConfigError(f"setting: unknown {name!r}; accepted {accepted}")
+    return config
+
+
+def structure(
+    name: str = "pyramid-even",
+    *,
+    layers: int | None = None,
+    bricks: int | None = None,
+    width: int | None = None,
+    towers: int | None = None,
+    goals: str | Path | None = None,
+    config: SimConfig | None = None,
+) -> StructureSpec:
+    """A structure at a size (a goals file for `list`); the options left out take the
+    structure's defaults."""
+    targets = None
+    if goals is not None:
+        from .core.goals import load_goals
+
+        config = config or SimConfig()
+        table_z = config.layout.table_top_z + config.brick.height / 2
+        targets = load_goals(Path(goals), config.brick, table_z)
+    return StructureSpec(
+        name, layers=layers, bricks=bricks, width=width, towers=towers, goals=targets,
+        goals_source=Path(goals).name if goals is not None else "",
+    )
+
+
+def plan(
+    name: str = "pyramid-even",
+    *,
+    arms: str = "both",
+    layers: int | None = None,
+    bricks: int | None = None,
+    width: int | None = None,
+    towers: int | None = None,
+    goals: str | Path | None = None,
+    config: SimConfig | None = None,
+    **values: Any,
+) -> Plan:
+    """The build plan: every brick's target, arm and order, and the spawn pose. No physics
+    (and no reach check: `build` does that)."""
+    config = settings(config, **values)
+    spec = structure(name, layers=layers, bricks=bricks, width=width, towers=towers,
+                     goals=goals, config=config)
+    return make_plan(spec, config, arms)
+
+
+def build(
+    name: str = "pyramid-even",
+    *,
+    arms: str = "both",
+    layers: int | None = None,
+    bricks: int | None = None,
+    width: int | None = None,
+    towers: int | None = None,
+    goals: str | Path | None = None,
+    config: SimConfig | None = None,
+    video: str | Path | None = None,
+    snapshot: str | Path | None = None,
+    video_config: VideoConfig | None = None,
+    **values: Any,
+) -> BuildResult:
+    """Build the structure in the physics and return its judged result. With `video` (an
+    .mp4 path) or `snapshot` (a .png path) the build is rendered headless: the GL backend is
+    chosen here, and a machine without one is refused before any physics runs."""
+    config = settings(config, **values)
+    spec = structure(name, layers=layers, bricks=bricks, width=width, towers=towers,
+                     goals=goals, config=config)
+    outputs = {".mp4": video, ".png": snapshot}
+    for suffix, path in outputs.items():
+        if path is not None and Path(path).suffix.lower() != suffix:
+            raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
+    render = video is not None or snapshot is not None
+    if render:
+        from .output.gl_backend import choose_gl_backend
+
+        choose_gl_backend()  # effective only if mujoco is not imported yet
+    from .physics.build import prepare, run_build
+
+    plan_ = prepare(spec, config, arms)
+    vc = video_config or VideoConfig()
+    return run_build(
+        plan_, config,
+        video=(vc, Path(video)) if video is not None else None,
+        snapshot=(vc, Path(snapshot)) if snapshot is not None else None,
+    )

@@ -1,0 +1,72 @@
+"""`pyramid-sim`: plan and build brick structures with two simulated Pandas.
+
+Thin: parses arguments into settings (which validate themselves), calls the library, prints.
+Every bad input ends in one line on stderr and exit status 2, before anything is written.
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+from pathlib import Path
+from typing import NoReturn, Sequence
+
+from ..core.plan import ARM_CHOICES
+from ..errors import ConfigError, PyramidSimError
+from ..version import __version__
+from . import args as a
+from . import commands
+
+COMMANDS = {
+    "plan": commands.cmd_plan, "build": commands.cmd_build, "view": commands.cmd_view,
+    "sweep": commands.cmd_sweep, "reach": commands.cmd_reach,
+}
+
+
+def make_parser() -> a.Parser:
+    parser = a.Parser(prog="pyramid-sim", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"pyramid-sim {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=a.Parser)
+    plan = sub.add_parser("plan", help="print the build plan as JSON, without simulating")
+    a.add_structure_args(plan)
+    a.add_physics_args(plan)
+    build = sub.add_parser("build", help="simulate the build headless and write DIR/result.json")
+    a.add_structure_args(build)
+    a.add_physics_args(build)
+    build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
+    build.add_argument("--quiet", action="store_true", help="no progress bars")
+    a.add_video_args(build)
+    view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
+    a.add_structure_args(view)
+    a.add_physics_args(view)
+    a.add_sweep_args(sub.add_parser(
+        "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and sweep.png"
+    ))
+    reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
+    reach.add_argument("--arms", type=a.one_of("arms", (*ARM_CHOICES, "all")), default="all",
+                       help="which arm set to check (default all three)")
+    return parser
+
+
+def _exit_on_sigterm(signum: int, frame: object) -> NoReturn:
+    raise SystemExit(128 + signum)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    # A terminated run unwinds like Ctrl-C, so the video's temporary file is removed: by
+    # default SIGTERM ends Python without running any `finally`.
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _exit_on_sigterm)
+    args = make_parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except ConfigError as err:
+        print(f"pyramid-sim: error: {err}", file=sys.stderr)
+        return a.EXIT_USAGE
+    except (PyramidSimError, OSError) as err:
+        print(f"pyramid-sim: failed: {err}", file=sys.stderr)
+        return a.EXIT_FAILED
+
+
+__all__ = ["main", "make_parser"]

@@ -1,0 +1,63 @@
+"""Writing files whole or not at all: every writer of pyramid_sim goes through here.
+
+A file is written under a temporary name beside its destination and renamed into place when
+complete, so an interrupted run never leaves a half-written result, video, still or plot.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any, Callable, Iterator
+
+from ..errors import ConfigError
+
+
+def temporary_beside(path: Path) -> Path:
+    """A new empty file next to `path` (same folder, so the final rename is atomic)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    os.chmod(tmp, 0o644)  # mkstemp makes it private; the finished file is an ordinary one
+    return Path(tmp)
+
+
+@contextmanager
+def atomic_path(path: Path) -> Iterator[Path]:
+    """Yield a temporary path to write; on success it becomes `path`, on any error it goes."""
+    tmp = temporary_beside(path)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def write_atomic(path: Path, write: Callable[[Path], None]) -> None:
+    """Call `write(tmp)` and move the finished file to `path`."""
+    with atomic_path(path) as tmp:
+        write(tmp)
+
+
+def write_json_atomic(path: Path, document: dict[str, Any]) -> None:
+    """`document` as indented JSON, written atomically."""
+    text = json.dumps(document, indent=2) + "\n"
+    write_atomic(path, lambda tmp: tmp.write_text(text))
+
+
+def check_writable_dir(path: Path, what: str = "out") -> None:
+    """ConfigError unless `path` is, or can be made, a writable folder (nothing is created)."""
+    probe = path
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir():
+        raise ConfigError(f"{what}: {str(probe)!r} is not a folder")
+    try:
+        with tempfile.TemporaryFile(dir=probe):
+            pass
+    except OSError as err:
+        raise ConfigError(f"{what}: {str(probe)!r} is not writable ({err.strerror})") from None

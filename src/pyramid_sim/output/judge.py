@@ -1,0 +1,130 @@
+"""Judge what a build measured against its targets: the `BuildResult`."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict
+
+import numpy as np
+
+from ..config import SimConfig
+from ..core.measurements import Measurements
+from ..core.plan import Plan
+from ..core.poses import quat_to_matrix, symmetric_yaw_error, tilt_of, yaw_of
+from .result import BrickResult, BuildInputs, BuildResult, FinalPose, Target, Tolerances, versions
+
+
+def _round_all(values: object, digits: int) -> tuple[float, ...]:
+    return tuple(round(float(v), digits) for v in values)  # type: ignore[attr-defined]
+
+
+def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, ...]:
+    """Per brick, in build order: target, final pose, errors and whether it is in place."""
+    rows = []
+    dropped = measured.dropped
+    for b in measured.plan.bricks:
+        pose = b.target.pose
+        target = Target(_round_all((pose.x, pose.y, pose.z), 6), round(pose.yaw, 6))  # type: ignore[arg-type]
+        slip = measured.slip_mm.get(b.index)
+        common = dict(
+            index=b.index, arm=b.arm, layer=b.target.layer, target=target,
+            dropped=b.index in dropped, drops=sum(d.brick == b.index for d in measured.drops),
+            slip_mm=round(slip, 3) if slip is not None else None,
+        )
+        slot = measured.slot_of.get(b.index)
+        if slot is None or not np.all(np.isfinite(measured.final_pos[slot])):
+            rows.append(BrickResult(
+                **common, final=None, error_xy_mm=None, error_z_mm=None, yaw_error_deg=None,
+                tilt_deg=None, knocked_off=False, placed=False,
+            ))
+            continue
+        pos, quat = measured.final_pos[slot], measured.final_quat[slot]
+        rot = quat_to_matrix(quat)
+        err = pos - pose.position
+        xy = round(float(np.hypot(err[0], err[1]) * 1000), 3)
+        z = round(float(err[2] * 1000), 3)
+        yaw = round(math.degrees(symmetric_yaw_error(yaw_of(rot), pose.yaw)), 3)
+        tilt = round(math.degrees(tilt_of(rot)), 3)
+        rows.append(BrickResult(
+            **common,
+            final=FinalPose(_round_all(pos, 6), _round_all(quat, 6)),  # type: ignore[arg-type]
+            error_xy_mm=xy, error_z_mm=z, yaw_error_deg=yaw, tilt_deg=tilt,
+            knocked_off=any(k.slot == slot for k in measured.knocks),
+            placed=xy <= tol.xy_mm and abs(z) <= tol.z_mm and yaw <= tol.yaw_deg
+            and tilt <= tol.tilt_deg,
+        ))
+    return tuple(rows)
+
+
+def failure_reason(measured: Measurements, bricks: tuple[BrickResult, ...]) -> str | None:
+    """Why the build failed, or None: the loop's own reason first, else what is wrong now.
+    A drop the build recovered from does not fail it: the structure is judged as it stands."""
+    n = len(bricks)
+    placed = sum(b.placed for b in bricks)
+    over_speed = measured.joint_speed_ratio > 1.0
+    if measured.failure is not None:
+        return measured.failure
+    if placed == n and measured.arm_arm_contacts == 0 and not over_speed:
+        return None
+    missing = [b.index for b in bricks if not b.placed]
+    problems = [f"{n - placed} of {n} bricks not in place (build order {missing})"] if missing else []
+    if measured.dropped:
+        problems.append(f"bricks dropped (build order {sorted(measured.dropped)})")
+    if measured.knocks:
+        problems.append(f"bricks knocked off (build order {[k.brick for k in measured.knocks]})")
+    if measured.arm_arm_contacts:
+        problems.append(f"{measured.arm_arm_contacts} arm-arm contacts")
+    if over_speed:
+        problems.append(f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit")
+    return "; ".join(problems)
+
+
+def inputs_of(plan: Plan, config: SimConfig) -> BuildInputs:
+    spec = plan.spec
+    return BuildInputs(
+        structure=spec.name, size=dict(spec.size), arms=plan.arms, seed=config.seed,
+        goals_file=spec.goals_source or None, settings=asdict(config),
+    )
+
+
+def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerances()) -> BuildResult:
+    """The `BuildResult` of a build: every brick judged, the run's figures rounded as written."""
+    bricks = judge_bricks(measured, tol)
+    n = len(bricks)
+    slips = [v for v in measured.slip_mm.values() if math.isfinite(v)]
+    errors = [b.error_xy_mm for b in bricks]
+    reason = failure_reason(measured, bricks)
+    wall = measured.wall_time
+    return BuildResult(
+        success=reason is None,
+        failure_reason=reason,
+        structure=measured.plan.structure,
+        size=dict(measured.plan.spec.size),
+        arms=measured.plan.arms,
+        bricks_total=n,
+        bricks_placed=sum(b.placed for b in bricks),
+        bricks=bricks,
+        worst_error_xy_mm=None if None in errors else max(errors, default=0.0),  # type: ignore[type-var]
+        sim_time_s=round(measured.sim_time, 3),
+        wall_time_s=round(wall, 3),
+        real_time_factor=round(measured.sim_time / wall, 3) if wall > 0 else None,
+        sim_s_per_brick=round(measured.sim_time / n, 3) if n else None,
+        max_slip_mm=round(max(slips), 3) if slips else None,
+        drops=len(measured.drops),
+        recoveries=sum(any(b.index == d.brick and b.placed for b in bricks) for d in measured.drops),
+        drop_events=tuple(measured.drops),
+        knocked_off=tuple(measured.knocks),
+        closest_arm_approach_mm=round(measured.closest_arm_m * 1000.0, 1),
+        closest_arm_approach_t_s=(
+            round(measured.closest_arm_time, 3) if measured.closest_arm_time is not None else None
+        ),
+        arm_arm_contacts=measured.arm_arm_contacts,
+        shared_zone_violations=measured.zone_violations,
+        finger_limit_excess_mm=round(measured.finger_limit_mm, 4),
+        max_joint_speed_ratio=round(measured.joint_speed_ratio, 4),
+        max_joint_torque_ratio=round(measured.joint_torque_ratio, 4),
+        mujoco_warnings=dict(measured.warnings),
+        physics_steps=measured.physics_steps,
+        inputs=inputs_of(measured.plan, config),
+        versions=versions(),
+    )

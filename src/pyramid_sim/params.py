@@ -1,0 +1,101 @@
+"""The one table of physics parameters a user turns.
+
+Each row generates a `build` flag and a `sweep` axis (same flag, taking a grid), their help text
+with the default and the accepted range, the validation in the settings dataclass that owns
+the value, and a `sweep.csv` column. Adding a knob is one row here plus the model code that
+uses it; `tests/test_params.py` checks that every row reaches the compiled model.
+Pure: no MuJoCo, and no import of the settings dataclasses (they import this table).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+from .errors import ConfigError
+
+
+@dataclass(frozen=True)
+class Param:
+    """One physics parameter: where it lives in the settings, its unit, default and range."""
+
+    name: str  # the keyword in Python, the sweep.csv column, the flag with dashes
+    label: str  # as a person reads it, in messages and on plots
+    unit: str
+    section: str  # the SimConfig field holding it: "brick" or "gripper"
+    field: str  # the field of that section
+    default: float
+    low: float
+    high: float
+    low_open: bool  # low itself is refused
+    sets: str  # what it sets in the model
+
+    @property
+    def flag(self) -> str:
+        return "--" + self.name.replace("_", "-")
+
+    @property
+    def range_text(self) -> str:
+        return f"{'(' if self.low_open else '['}{self.low:g}, {self.high:g}]"
+
+    @property
+    def help(self) -> str:
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{self.sets}; accepted {self.range_text}{unit} (default {self.default:g})"
+
+    def check(self, value: Any) -> None:
+        """ConfigError naming the parameter and its range unless `value` is accepted."""
+        check_range(self.label, value, self.low, self.high, low_open=self.low_open)
+
+    def read(self, config: Any) -> float:
+        return float(getattr(getattr(config, self.section), self.field))
+
+    def apply(self, config: Any, value: float) -> Any:
+        """`config` (a SimConfig) with this parameter set to `value` (validated by its owner)."""
+        section = replace(getattr(config, self.section), **{self.field: value})
+        return replace(config, **{self.section: section})
+
+
+PARAMS: tuple[Param, ...] = (
+    Param("friction", "brick friction", "", "brick", "friction", 1.0, 0.0, 5.0, True,
+          "sliding friction of the brick geoms"),
+    Param("brick_mass", "brick mass (kg)", "kg", "brick", "mass", 0.5, 0.0, 5.0, True,
+          "mass of each brick"),
+    Param("grip_force", "grip force (N)", "N", "gripper", "force", 20.0, 0.0, 140.0, True,
+          "squeeze of each finger pad (the gripper actuator's force limit)"),
+    Param("pad_friction", "pad friction", "", "gripper", "pad_friction", 1.0, 0.0, 5.0, True,
+          "sliding friction of the finger pads"),
+)
+BY_NAME = {p.name: p for p in PARAMS}
+
+
+def param(name: str) -> Param:
+    """The row called `name`; ConfigError listing the rows otherwise."""
+    if name not in BY_NAME:
+        raise ConfigError(f"parameter: unknown {name!r}; accepted {', '.join(BY_NAME)}")
+    return BY_NAME[name]
+
+
+def default(section: str, field: str) -> float:
+    """The table's default for a settings field (the dataclasses take their defaults here)."""
+    return next(p.default for p in PARAMS if (p.section, p.field) == (section, field))
+
+
+def check_section(section: str, settings: Any) -> None:
+    """Validate every table parameter held by `settings`, the `section` part of a SimConfig."""
+    for p in PARAMS:
+        if p.section == section:
+            p.check(getattr(settings, p.field))
+
+
+def check_range(
+    name: str, value: Any, low: float, high: float, *, low_open: bool = False
+) -> None:
+    """Raise ConfigError unless low <= value <= high (low < value when low_open)."""
+    span = f"{'(' if low_open else '['}{low:g}, {high:g}]"
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError(f"{name}: {value!r} is not a number; accepted {span}")
+    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
+    if not ok:
+        raise ConfigError(f"{name}: {value} is out of range; accepted {span}")

@@ -1,0 +1,135 @@
+"""Brick custody: which brick is in which hand, how far it slipped, which were dropped or
+knocked off, and which brick the spawn spot gets next (a dropped one lying on the spot, else the
+next from the magazine)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from ..config import SimConfig
+from ..core.incidents import DROP_DISTANCE, MAX_DROPS_PER_BRICK, Drop, Knock, KnockWatch, grip_diagnosis
+from ..core.primitives import Step, StepKind
+from . import names as c
+from .handles import SceneHandles
+from .spawner import Spawner
+
+
+@dataclass
+class Carry:
+    """A brick in a hand: its slot, build index and pose in the tool frame at the grip."""
+
+    slot: int
+    index: int
+    offset: np.ndarray
+    max_slip: float = 0.0
+
+
+class BrickCustody:
+    """Every brick's whereabouts during a build, from the spawn spot to its place."""
+
+    def __init__(
+        self, data: mujoco.MjData, handles: SceneHandles, spawner: Spawner, bricks: int,
+        config: SimConfig,
+    ) -> None:
+        self.data, self.handles, self.spawner = data, handles, spawner
+        self.bricks = bricks  # in the structure
+        self.config = config
+        self.carry: dict[str, Carry | None] = {a: None for a in c.ARMS}
+        self.slot_of: dict[int, int] = {}  # build-order index -> slot of the brick placed there
+        self.slip_mm: dict[int, float] = {}
+        self.drops: list[Drop] = []
+        self.lost: list[int] = []  # slots of dropped bricks, not (yet) picked again
+        self.knocks: list[Knock] = []
+        self.knock_watch = KnockWatch()
+        self.failure: str | None = None  # set when a brick has been dropped too often
+
+    def tcp(self, arm: str) -> tuple[np.ndarray, np.ndarray]:
+        site = self.handles.tcp_site[arm]
+        return self.data.site_xpos[site], self.data.site_xmat[site].reshape(3, 3)
+
+    def brick_in_tcp(self, arm: str, slot: int) -> np.ndarray:
+        p, r = self.tcp(arm)
+        return r.T @ (self.data.xpos[self.handles.brick_body[slot]] - p)
+
+    def gripped(self, arm: str, brick: int) -> None:
+        """The arm closed on the brick lying on the spot, for build-order place `brick`."""
+        slot = self.spawner.current
+        assert slot is not None
+        self.spawner.taken(slot)
+        self.slot_of[brick] = slot
+        self.carry[arm] = Carry(slot, brick, self.brick_in_tcp(arm, slot).copy())
+
+    def released(self, brick: int) -> None:
+        """The brick for place `brick` was let go: from now on it is watched for knocks."""
+        slot = self.slot_of[brick]
+        body = self.handles.brick_body[slot]
+        self.knock_watch.placed(brick, slot, body, self.data.xpos[body].copy())
+
+    def track(self, steps: dict[str, Step | None]) -> list[Drop]:
+        """Once per control step, given each arm's current step: the slip of each carried
+        brick, and the bricks that left a hand (a drop). The third drop of one brick sets
+        `failure`, saying why."""
+        dropped = []
+        for arm in c.ARMS:
+            carry = self.carry[arm]
+            if carry is None:
+                continue
+            step = steps[arm]
+            if step is not None and step.kind is StepKind.RELEASE:
+                # Set down: the carry is over, what follows is the release.
+                self.slip_mm[carry.index] = carry.max_slip * 1000.0
+                self.carry[arm] = None
+                continue
+            slip = float(np.linalg.norm(self.brick_in_tcp(arm, carry.slot) - carry.offset))
+            carry.max_slip = max(carry.max_slip, slip)
+            if slip > DROP_DISTANCE:
+                drop = self._drop(arm, carry, step.name if step is not None else "idle")
+                if self.failure is None:
+                    dropped.append(drop)
+        return dropped
+
+    def _drop(self, arm: str, carry: Carry, step: str) -> Drop:
+        """Record a brick that left the hand. One that comes to rest on the spawn spot is
+        picked again; one that lands elsewhere is replaced by a spare (`feed_spot`)."""
+        d = self.data
+        on_spot = self.spawner.rests_on_spot(d, carry.slot)
+        pos = tuple(float(v) for v in d.xpos[self.handles.brick_body[carry.slot]])
+        drop = Drop(carry.index, arm, carry.slot, float(d.time), pos, step, on_spot)
+        self.drops.append(drop)
+        self.carry[arm] = None
+        self.slot_of.pop(carry.index, None)
+        if sum(e.brick == carry.index for e in self.drops) >= MAX_DROPS_PER_BRICK:
+            self.failure = (
+                f"brick {carry.index} dropped {MAX_DROPS_PER_BRICK} times; last, "
+                f"{drop.describe()}: {grip_diagnosis(self.config)}"
+            )
+        else:
+            self.lost.append(carry.slot)  # picked again if it comes to rest on the spot
+        return drop
+
+    def check_knocks(self) -> None:
+        """Placed bricks that moved away from where they were let go."""
+        self.knocks.extend(self.knock_watch.check(self.data.xpos, float(self.data.time)))
+
+    def needs_brick(self) -> bool:
+        """A brick is needed while some pick is still to come."""
+        picked = len(self.slot_of)
+        return picked + (1 if self.spawner.current is not None else 0) < self.bricks
+
+    def feed_spot(self) -> int | None:
+        """Give the next pick a brick: a dropped one lying on the spot as spawned is picked
+        again, else the next from the magazine once the spot and the hands are clear. Returns
+        the slot of a newly spawned brick."""
+        d = self.data
+        back = next((s for s in self.lost if self.spawner.rests_on_spot(d, s)), None)
+        if back is not None:
+            self.lost.remove(back)
+            self.spawner.put_back(back)
+        elif self.spawner.remaining > 0 and self.spawner.spot_clear(
+            d, [self.tcp(a)[0] for a in c.ARMS]
+        ):
+            return self.spawner.spawn_next(d)
+        return None

@@ -1,0 +1,45 @@
+"""Why a build was stopped, in words a user can act on."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import mujoco
+import numpy as np
+
+from ..core.scheduler import Action
+from . import names as c
+
+if TYPE_CHECKING:
+    from .loop import BuildLoop
+
+
+def warning_reason(data: mujoco.MjData) -> str:
+    """The failure for a step that raised MuJoCo warnings (NaN or huge values in the state
+    among them: MuJoCo checks qpos, qvel and qacc every step)."""
+    raised = [mujoco.mjtWarning(i).name for i in np.flatnonzero(data.warning.number)]
+    return (
+        f"MuJoCo warning {', '.join(raised)} at t = {data.time:.3f} s: the physics "
+        "went wrong (a diverging or overfull step), so the build was stopped"
+    )
+
+
+def stall_reason(loop: BuildLoop) -> str:
+    """Why no arm has finished a move for `stall_time`: name what they wait for."""
+    runners, custody = loop.runners, loop.custody
+    moving = [a for a in c.ARMS if runners[a].busy and not loop.held(a)]
+    cause = f"{' and '.join(moving)} arm not reaching its target" if moving else "arms idle"
+    for a in (a for a in c.ARMS if runners[a].busy and loop.held(a)):
+        task = loop.task_of[a]
+        if task is not None and task.action is Action.PICK and loop.scheduler.may_enter(a):
+            cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
+        else:
+            cause = f"{a} arm waiting for the shared zone"
+    if custody.drops:
+        cause += f"; earlier, {custody.drops[-1].describe()}"
+        if loop.spawner.remaining == 0 and custody.needs_brick():
+            cause += f" (no spare brick left of {loop.config.spare_bricks})"
+    return (
+        f"stalled at t = {loop.data.time:.1f} s: no arm finished a move for "
+        f"{loop.config.stall_time:g} s; {cause}"
+    )
