@@ -112,11 +112,11 @@ def build(
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:
             raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-    render = video is not None or snapshot is not None
-    if render:
-        from .output.gl_backend import choose_gl_backend
+    if video is not None or snapshot is not None:
+        from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
 
         choose_gl_backend()  # effective only if mujoco is not imported yet
+        import_physics_for_rendering()
     from .physics.build import prepare, run_build
 
     plan_ = prepare(spec, config, arms)

@@ -29,3 +29,16 @@ def choose_gl_backend() -> str:
     os.environ["MUJOCO_GL"] = chosen
     os.environ.setdefault("PYOPENGL_PLATFORM", chosen)
     return chosen
+
+
+def import_physics_for_rendering() -> None:
+    """Import MuJoCo under the chosen backend, or ConfigError: with a backend whose library is
+    missing (MUJOCO_GL=osmesa without libOSMesa) `import mujoco` itself fails."""
+    try:
+        import mujoco  # noqa: F401
+    except (ImportError, AttributeError, RuntimeError) as err:
+        raise ConfigError(
+            f"video: MuJoCo cannot load with MUJOCO_GL={os.environ.get('MUJOCO_GL')} ({err}); "
+            "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa "
+            "(apt-get install libosmesa6)"
+        ) from None

@@ -1,0 +1,42 @@
+"""The Python API without physics: plans, settings and refusals (tests/physics/test_api_build.py
+builds)."""
+
+import pytest
+
+import pyramid_sim
+from pyramid_sim.params import PARAMS
+
+
+def test_plan_takes_a_structure_its_size_and_settings():
+    plan = pyramid_sim.plan("wall", bricks=5, width=2, arms="left", brick_mass=0.7)
+    assert plan.structure == "wall" and plan.arms == "left"
+    assert len(plan.bricks) == 5 and {b.arm for b in plan.bricks} == {"left"}
+
+
+def test_every_table_parameter_is_a_setting():
+    for p in PARAMS:
+        value = (p.low + p.high) / 2
+        assert p.read(pyramid_sim.settings(**{p.name: value})) == value
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        ({"stiffness": 3}, "unknown 'stiffness'; accepted friction, brick_mass"),
+        ({"friction": 0}, "brick friction: 0 is out of range; accepted (0, 5]"),
+        ({"brick_mass": float("nan")}, "brick mass (kg)"),
+        ({"seed": -1}, "seed"),
+        ({"layers": 0}, "layers"),
+        ({"arms": "middle"}, "arms"),
+    ],
+)
+def test_bad_settings_raise_one_config_error(kwargs, words):
+    with pytest.raises(pyramid_sim.ConfigError) as err:
+        pyramid_sim.plan("pyramid", **kwargs)
+    assert words in str(err.value)
+    assert isinstance(err.value, pyramid_sim.PyramidSimError)
+
+
+def test_build_refuses_a_wrong_video_suffix_before_any_physics():
+    with pytest.raises(pyramid_sim.ConfigError, match="must end in .mp4"):
+        pyramid_sim.build("pyramid", layers=1, video="out/build.avi")

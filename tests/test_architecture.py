@@ -1,0 +1,61 @@
+"""The layout's promises, checked on the source: the pure core never imports MuJoCo, no module
+imports another's private name, modules stay small, and the public API is what it says."""
+
+import ast
+import importlib
+import pkgutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pyramid_sim
+
+SRC = Path(pyramid_sim.__file__).resolve().parent
+PURE = ("pyramid_sim", "pyramid_sim.core", "pyramid_sim.params", "pyramid_sim.config",
+        "pyramid_sim.api", "pyramid_sim.output.result", "pyramid_sim.output.judge",
+        "pyramid_sim.output.files", "pyramid_sim.sweep.grid", "pyramid_sim.sweep.store",
+        "pyramid_sim.sweep.report", "pyramid_sim.cli")
+
+
+def _modules(package: str) -> list[str]:
+    pkg = importlib.import_module(package)
+    if not hasattr(pkg, "__path__") or package == "pyramid_sim":  # the top level, not its tree
+        return [package]
+    return [package] + [m.name for m in pkgutil.walk_packages(pkg.__path__, package + ".")
+                        if not m.name.endswith("__main__")]
+
+
+def test_the_pure_modules_import_and_plan_with_mujoco_blocked():
+    names = sorted({m for p in PURE for m in _modules(p)})
+    code = (
+        "import sys, importlib; sys.modules['mujoco'] = None\n"
+        f"for name in {names!r}: importlib.import_module(name)\n"
+        "import pyramid_sim\n"
+        "plan = pyramid_sim.plan('pyramid-even', layers=3, friction=0.7)\n"
+        "assert len(plan.bricks) == 12\n"
+        "assert 'mujoco' not in {k for k, v in sys.modules.items() if v is not None}\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert any(n.startswith("pyramid_sim.core.") for n in names)
+
+
+def test_no_module_imports_a_private_name_of_another():
+    offenders = []
+    for path in SRC.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module != "__future__":
+                offenders += [f"{path.name}: {a.name}" for a in node.names
+                              if a.name.startswith("_") and not a.name.startswith("__")]
+    assert offenders == []
+
+
+def test_no_module_is_over_300_lines():
+    sizes = {p.relative_to(SRC).as_posix(): len(p.read_text().splitlines()) for p in SRC.rglob("*.py")}
+    assert max(sizes.values()) <= 300, {k: v for k, v in sizes.items() if v > 300}
+
+
+def test_the_public_api_resolves_and_has_a_version():
+    for name in pyramid_sim.__all__:
+        assert getattr(pyramid_sim, name) is not None, name
+    assert pyramid_sim.__version__ and pyramid_sim.__version__[0].isdigit()
