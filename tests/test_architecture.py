@@ -55,6 +55,16 @@ def test_no_module_is_over_300_lines():
     assert max(sizes.values()) <= 300, {k: v for k, v in sizes.items() if v > 300}
 
 
+def test_no_class_over_200_lines_and_no_function_over_60():
+    long = []
+    for path in SRC.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            limit = {ast.ClassDef: 200, ast.FunctionDef: 60}.get(type(node))
+            if limit and node.end_lineno - node.lineno + 1 > limit:
+                long.append(f"{path.name}: {node.name}")
+    assert long == []
+
+
 def test_the_public_api_resolves_and_has_a_version():
     for name in pyramid_sim.__all__:
         assert getattr(pyramid_sim, name) is not None, name

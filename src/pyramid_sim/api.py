@@ -42,6 +42,9 @@ def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
     return config
 
 
+SIZE_KEYWORDS = ("layers", "bricks", "width", "towers", "goals")
+
+
 def structure(
     name: str = "pyramid-even",
     *,
@@ -67,23 +70,22 @@ def structure(
     )
 
 
+def _resolve(name: str, config: SimConfig | None, options: dict[str, Any]) -> tuple[SimConfig, StructureSpec]:
+    """Settings and structure from one set of keywords: the size options (SIZE_KEYWORDS) go
+    to the structure, the rest are settings."""
+    sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
+    config = settings(config, **options)
+    return config, structure(name, config=config, **sizes)
+
+
 def plan(
-    name: str = "pyramid-even",
-    *,
-    arms: str = "both",
-    layers: int | None = None,
-    bricks: int | None = None,
-    width: int | None = None,
-    towers: int | None = None,
-    goals: str | Path | None = None,
-    config: SimConfig | None = None,
-    **values: Any,
+    name: str = "pyramid-even", *, arms: str = "both", config: SimConfig | None = None,
+    **options: Any,
 ) -> Plan:
-    """The build plan: every brick's target, arm and order, and the spawn pose. No physics
-    (and no reach check: `build` does that)."""
-    config = settings(config, **values)
-    spec = structure(name, layers=layers, bricks=bricks, width=width, towers=towers,
-                     goals=goals, config=config)
+    """The build plan: every brick's target, arm and order, and the spawn pose. `options` are
+    the structure's size (layers, bricks, width, towers, goals) and settings. No physics (and
+    no reach check: `build` does that)."""
+    config, spec = _resolve(name, config, options)
     return make_plan(spec, config, arms)
 
 
@@ -91,23 +93,17 @@ def build(
     name: str = "pyramid-even",
     *,
     arms: str = "both",
-    layers: int | None = None,
-    bricks: int | None = None,
-    width: int | None = None,
-    towers: int | None = None,
-    goals: str | Path | None = None,
     config: SimConfig | None = None,
     video: str | Path | None = None,
     snapshot: str | Path | None = None,
     video_config: VideoConfig | None = None,
-    **values: Any,
+    **options: Any,
 ) -> BuildResult:
-    """Build the structure in the physics and return its judged result. With `video` (an
-    .mp4 path) or `snapshot` (a .png path) the build is rendered headless: the GL backend is
-    chosen here, and a machine without one is refused before any physics runs."""
-    config = settings(config, **values)
-    spec = structure(name, layers=layers, bricks=bricks, width=width, towers=towers,
-                     goals=goals, config=config)
+    """Build the structure in the physics and return its judged result; `options` as for
+    `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
+    headless: the GL backend is chosen here, and a machine without one is refused before any
+    physics runs."""
+    config, spec = _resolve(name, config, options)
     outputs = {".mp4": video, ".png": snapshot}
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:
@@ -119,10 +115,9 @@ def build(
         import_physics_for_rendering()
     from .physics.build import prepare, run_build
 
-    plan_ = prepare(spec, config, arms)
     vc = video_config or VideoConfig()
     return run_build(
-        plan_, config,
+        prepare(spec, config, arms), config,
         video=(vc, Path(video)) if video is not None else None,
         snapshot=(vc, Path(snapshot)) if snapshot is not None else None,
     )

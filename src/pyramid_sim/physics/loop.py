@@ -9,15 +9,15 @@ import mujoco
 import numpy as np
 
 from ..config import SimConfig
-from ..core.arm_runner import ArmRunner
 from ..core.measurements import Measurements
 from ..core.plan import Plan
-from ..core.primitives import Step, StepKind, clear_pose, clear_steps, pick_steps, place_steps
-from ..core.scheduler import Action, LockstepScheduler, Task
+from ..core.primitives import Step, StepKind, clear_pose
+from ..core.scheduler import Task
 from ..core.zone import shared_zone
 from . import names as c
 from .clearance import ArmClearance
 from .custody import BrickCustody
+from .dispatch import ArmDispatch
 from .handles import SceneHandles
 from .hooks import BuildHooks
 from .ik import DualArmIK
@@ -49,12 +49,10 @@ class BuildLoop:
             jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
         )
         self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
-        self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
         self._reset_arms()
-        self.runners = {
-            a: ArmRunner(a, config, self.ik.tcp_pose(a), 2 * config.gripper.stroke) for a in c.ARMS
-        }
-        self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
+        self.dispatch = ArmDispatch(
+            plan, config, self.spawner, {a: self.ik.tcp_pose(a) for a in c.ARMS}
+        )
         self.clearance = ArmClearance(m, self.data)
         self.monitor = StepMonitor(
             m, self.data,
@@ -66,8 +64,6 @@ class BuildLoop:
         self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
         self.placed = self.zone_violations = self.steps = 0
         self.last_progress = 0.0  # sim time an arm last finished a step
-        self._retracting = {a: False for a in c.ARMS}
-        self._settle_until: float | None = None
         self._next_frame = 0.0
 
     def _reset_arms(self) -> None:
@@ -88,19 +84,7 @@ class BuildLoop:
     # --- what the loop reads ----------------------------------------------------------------
     def step_of(self, arm: str) -> Step | None:
         """The primitive step the arm is in (None when idle)."""
-        return self.runners[arm].current
-
-    def held(self, arm: str) -> bool:
-        """Whether the arm must wait before its first move into the shared zone: until the
-        other arm is out, and for a pick until a brick lies on the spawn spot."""
-        step = self.runners[arm].current
-        if step is None or not step.enters_zone or self.runners[arm].started:
-            return False
-        if not self.scheduler.may_enter(arm):
-            return True
-        task = self.task_of[arm]
-        picking = task is not None and task.action is Action.PICK
-        return picking and not self.spawner.brick_ready()
+        return self.dispatch.step_of(arm)
 
     def _arm_outside(self, arm: str) -> bool:
         xpos = self.data.xpos
@@ -116,58 +100,17 @@ class BuildLoop:
     def _watch_zone(self) -> None:
         outside = {a: self._arm_outside(a) for a in c.ARMS}
         for a in c.ARMS:
-            self.scheduler.report_zone(a, outside[a])
+            self.dispatch.scheduler.report_zone(a, outside[a])
         if not outside["left"] and not outside["right"]:
             self.zone_violations += 1
-
-    def _schedule(self) -> bool:
-        """Hand idle arms their next steps; True once the build is over and has settled."""
-        if not self.scheduler.finished:
-            for a in c.ARMS:
-                if not self.runners[a].busy and self.task_of[a] is not self.scheduler.task(a):
-                    self._assign(a)
-            return False
-        for a in c.ARMS:
-            if not self._retracting[a] and not self.runners[a].busy:
-                self.runners[a].load(clear_steps(a, self.config.motion))
-                self._retracting[a] = True
-        if all(self._retracting.values()) and not any(r.busy for r in self.runners.values()):
-            if self._settle_until is None:
-                self._settle_until = self.data.time + self.config.settle_time
-            elif self.data.time >= self._settle_until:
-                return True
-        return False
-
-    def _assign(self, arm: str) -> None:
-        """Give an idle arm the steps of its task in the current phase."""
-        task = self.scheduler.task(arm)
-        motion = self.config.motion
-        if task.action in (Action.PICK, Action.PLACE):
-            assert task.brick is not None
-            target = self.plan.bricks[task.brick].target.pose
-            if task.action is Action.PICK:
-                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target))
-            else:
-                self.runners[arm].load(place_steps(target, motion))
-        elif task.action is Action.CLEAR:
-            self.runners[arm].load(clear_steps(arm, motion))
-        self.task_of[arm] = task
 
     def _drive_arms(self) -> None:
         """Advance each arm's primitive and aim the IK at its pose."""
         for a in c.ARMS:
-            runner = self.runners[a]
-            if runner.busy and not self.held(a):
-                done = runner.tick(self.config.motion.control_dt, self.ik.error(a)[0])
-                if done is not None:
-                    self._on_step_done(a, done.kind)
-                    if not runner.busy and not self.scheduler.finished:
-                        self.scheduler.complete(a)
-            self.ik.set_target(a, runner.pose)
+            self.ik.set_target(a, self.dispatch.advance(a, self.ik.error(a)[0], self._on_step_done))
 
-    def _on_step_done(self, arm: str, kind: StepKind) -> None:
+    def _on_step_done(self, arm: str, kind: StepKind, task: Task | None) -> None:
         self.last_progress = self.data.time
-        task = self.task_of[arm]
         if kind is StepKind.GRIP:
             assert task is not None and task.brick is not None
             self.custody.gripped(arm, task.brick)
@@ -193,7 +136,7 @@ class BuildLoop:
         ctrl_prev = ctrl.copy()
         ctrl_next = ctrl_prev.copy()
         ctrl_next[self.handles.ctrl_index] = np.concatenate(
-            [np.append(self.ik.arm_q(a), self.runners[a].gap) for a in c.ARMS]
+            [np.append(self.ik.arm_q(a), self.dispatch.runners[a].gap) for a in c.ARMS]
         )
         ramp = ctrl_prev + (ctrl_next - ctrl_prev) * self._ramp
         warned = False
@@ -214,12 +157,8 @@ class BuildLoop:
     def _keep_custody(self) -> None:
         """Carried bricks that left a hand send their arm to clear with open fingers; the
         brick goes back to the front of the arm's queue."""
-        for drop in self.custody.track({a: self.runners[a].current for a in c.ARMS}):
-            runner = self.runners[drop.arm]
-            runner.gap = runner.open_gap
-            runner.load(clear_steps(drop.arm, self.config.motion))
-            self.scheduler.dropped(drop.arm, drop.brick)
-            self.task_of[drop.arm] = self.scheduler.task(drop.arm)
+        for drop in self.custody.track({a: self.dispatch.step_of(a) for a in c.ARMS}):
+            self.dispatch.dropped(drop.arm, drop.brick)
         self.custody.check_knocks()
         self.clearance.update()
 
@@ -240,12 +179,10 @@ class BuildLoop:
         self.hooks = hooks
         failure: str | None = None
         start = time.perf_counter()
-        for a in c.ARMS:
-            self.runners[a].load([])
         while True:
             self._feed_spot()
             self._watch_zone()
-            if self._schedule():
+            if self.dispatch.schedule(self.data.time):
                 break
             self._drive_arms()
             self._solve_ik()

@@ -26,12 +26,13 @@ def warning_reason(data: mujoco.MjData) -> str:
 
 def stall_reason(loop: BuildLoop) -> str:
     """Why no arm has finished a move for `stall_time`: name what they wait for."""
-    runners, custody = loop.runners, loop.custody
-    moving = [a for a in c.ARMS if runners[a].busy and not loop.held(a)]
+    dispatch, custody = loop.dispatch, loop.custody
+    runners = dispatch.runners
+    moving = [a for a in c.ARMS if runners[a].busy and not dispatch.held(a)]
     cause = f"{' and '.join(moving)} arm not reaching its target" if moving else "arms idle"
-    for a in (a for a in c.ARMS if runners[a].busy and loop.held(a)):
-        task = loop.task_of[a]
-        if task is not None and task.action is Action.PICK and loop.scheduler.may_enter(a):
+    for a in (a for a in c.ARMS if runners[a].busy and dispatch.held(a)):
+        task = dispatch.task_of[a]
+        if task is not None and task.action is Action.PICK and dispatch.scheduler.may_enter(a):
             cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
         else:
             cause = f"{a} arm waiting for the shared zone"

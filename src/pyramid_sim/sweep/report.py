@@ -129,18 +129,22 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         ax.set_ylabel(y.label if y else "")
         ax.set_title(title)
         fig.colorbar(image, ax=ax, extend="neither" if title == "success rate" else "max")
+    fig.suptitle(_title(config, x, y))
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", dpi=110))
+    finally:
+        plt.close(fig)
+
+
+def _title(config: SweepConfig, x: Axis, y: Axis | None) -> str:
+    """What the map shows: the structure, the runs, and the parameters held or folded."""
     fixed = ", ".join(
         f"{a.label} {value_text(a.values[0])}" for a in config.full_axes() if len(a.values) == 1
         and a.name not in (x.name, y.name if y else None)
     )
     folded = [a.label for a in config.full_axes() if len(a.values) > 1 and a not in (x, y)]
-    fig.suptitle(
+    return (
         f"{config.structure.name} ({config.structure.size_text()}, arms {config.arms}), "
-        f"{config.repeats} run(s) a point, spawn "
-        f"jitter {config.spawn_jitter_mm:g} mm; {fixed}"
+        f"{config.repeats} run(s) a point, spawn jitter {config.spawn_jitter_mm:g} mm; {fixed}"
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )
-    try:
-        write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", dpi=110))
-    finally:
-        plt.close(fig)

@@ -1,0 +1,102 @@
+"""Task dispatch: the scheduler's tasks turned into each arm's primitive steps, and the arms
+advanced through them; an arm waits at the shared zone's edge while it may not enter."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from ..config import SimConfig
+from ..core.arm_runner import ArmRunner
+from ..core.plan import Plan
+from ..core.primitives import Step, StepKind, clear_steps, pick_steps, place_steps
+from ..core.scheduler import Action, LockstepScheduler, Task
+from ..core.poses import Pose
+from . import names as c
+from .spawner import Spawner
+
+
+class ArmDispatch:
+    """Both arms' runners, the task each is running, and the end-of-build retract."""
+
+    def __init__(
+        self, plan: Plan, config: SimConfig, spawner: Spawner, tcp: dict[str, Pose]
+    ) -> None:
+        self.plan, self.config, self.spawner = plan, config, spawner
+        self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
+        self.runners = {a: ArmRunner(a, config, tcp[a], 2 * config.gripper.stroke) for a in c.ARMS}
+        self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
+        self._retracting = {a: False for a in c.ARMS}
+        self._settle_until: float | None = None
+        for a in c.ARMS:
+            self.runners[a].load([])
+
+    def step_of(self, arm: str) -> Step | None:
+        """The primitive step the arm is in (None when idle)."""
+        return self.runners[arm].current
+
+    def held(self, arm: str) -> bool:
+        """Whether the arm must wait before its first move into the shared zone: until the
+        other arm is out, and for a pick until a brick lies on the spawn spot."""
+        step = self.runners[arm].current
+        if step is None or not step.enters_zone or self.runners[arm].started:
+            return False
+        if not self.scheduler.may_enter(arm):
+            return True
+        task = self.task_of[arm]
+        picking = task is not None and task.action is Action.PICK
+        return picking and not self.spawner.brick_ready()
+
+    def schedule(self, now: float) -> bool:
+        """Hand idle arms their next steps; True once the build is over and has settled."""
+        if not self.scheduler.finished:
+            for a in c.ARMS:
+                if not self.runners[a].busy and self.task_of[a] is not self.scheduler.task(a):
+                    self._assign(a)
+            return False
+        for a in c.ARMS:
+            if not self._retracting[a] and not self.runners[a].busy:
+                self.runners[a].load(clear_steps(a, self.config.motion))
+                self._retracting[a] = True
+        if all(self._retracting.values()) and not any(r.busy for r in self.runners.values()):
+            if self._settle_until is None:
+                self._settle_until = now + self.config.settle_time
+            elif now >= self._settle_until:
+                return True
+        return False
+
+    def _assign(self, arm: str) -> None:
+        """Give an idle arm the steps of its task in the current phase."""
+        task = self.scheduler.task(arm)
+        motion = self.config.motion
+        if task.action in (Action.PICK, Action.PLACE):
+            assert task.brick is not None
+            target = self.plan.bricks[task.brick].target.pose
+            if task.action is Action.PICK:
+                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target))
+            else:
+                self.runners[arm].load(place_steps(target, motion))
+        elif task.action is Action.CLEAR:
+            self.runners[arm].load(clear_steps(arm, motion))
+        self.task_of[arm] = task
+
+    def advance(
+        self, arm: str, ik_error: float, on_done: Callable[[str, StepKind, Task | None], None]
+    ) -> Pose:
+        """One control tick of the arm (unless held); `on_done` hears a finished step before
+        the scheduler hears of a finished task. Returns the pose the arm is commanded to."""
+        runner = self.runners[arm]
+        if runner.busy and not self.held(arm):
+            done = runner.tick(self.config.motion.control_dt, ik_error)
+            if done is not None:
+                on_done(arm, done.kind, self.task_of[arm])
+                if not runner.busy and not self.scheduler.finished:
+                    self.scheduler.complete(arm)
+        return runner.pose
+
+    def dropped(self, arm: str, brick: int) -> None:
+        """The arm lost its brick: fingers open, off to clear, the brick back in its queue."""
+        runner = self.runners[arm]
+        runner.gap = runner.open_gap
+        runner.load(clear_steps(arm, self.config.motion))
+        self.scheduler.dropped(arm, brick)
+        self.task_of[arm] = self.scheduler.task(arm)
