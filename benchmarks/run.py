@@ -10,7 +10,6 @@ Targets are reported, never asserted: these machines are too noisy for timed tes
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 

@@ -3,15 +3,11 @@
 import itertools
 import json
 import math
-from pathlib import Path
 
 import pytest
 
-from pyramid_sim.resources import GOALS
-
 from pyramid_sim import ConfigError
 from pyramid_sim.config import BrickConfig
-from pyramid_sim.core.goals import bricks_overlap, load_goals
 from pyramid_sim.core.brick_manager import (
     SEED_WALL_TOLERANCE,
     goal_manager_server3,
@@ -19,8 +15,10 @@ from pyramid_sim.core.brick_manager import (
     wall,
     wall_pyramid,
 )
+from pyramid_sim.core.goals import bricks_overlap, load_goals
 from pyramid_sim.core.seed_pyramids import SEED_START
 from pyramid_sim.core.structures import StructureSpec
+from pyramid_sim.resources import GOALS
 
 SEED_BRICK = BrickConfig(length=0.2, width=0.09, height=0.06)  # goal_manager_server2/3's brick
 TABLE_Z = 0.11

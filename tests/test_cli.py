@@ -1,13 +1,11 @@
 """The command line: plan JSON, bad input (one line, exit 2, nothing written), a real build."""
 
 import json
-from pathlib import Path
 
 import pytest
 
-from pyramid_sim.resources import GOALS
-
 from pyramid_sim.cli import main
+from pyramid_sim.resources import GOALS
 
 
 def test_plan_prints_the_build_order(capsys):

@@ -4,9 +4,14 @@ import numpy as np
 import pytest
 
 from pyramid_sim.core.poses import (
-    Pose, grasp_yaw, symmetric_yaw_error, tcp_quaternion, tcp_rotation, yaw_of,
+    Pose,
+    grasp_yaw,
+    quat_to_matrix,
+    symmetric_yaw_error,
+    tcp_quaternion,
+    tcp_rotation,
+    yaw_of,
 )
-from pyramid_sim.core.poses import quat_to_matrix
 from pyramid_sim.core.trajectory import min_jerk, plan_segment
 
 

@@ -2,7 +2,13 @@
 
 import pytest
 
-from pyramid_sim import ConfigError, create_coordinates, create_coordinates_new, pyramid, pyramid_even
+from pyramid_sim import (
+    ConfigError,
+    create_coordinates,
+    create_coordinates_new,
+    pyramid,
+    pyramid_even,
+)
 from pyramid_sim.core.seed_pyramids import SEED_GAP
 
 

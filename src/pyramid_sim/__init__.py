@@ -7,11 +7,17 @@ brings in the physics when it is called.
 from .api import build, plan, settings, structure
 from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig, VideoConfig
 from .core.assignment import Assignment, arrange
+from .core.brick_manager import towers, wall, wall_pyramid
 from .core.plan import Plan, make_plan
 from .core.poses import Pose
 from .core.scheduler import Action, LockstepScheduler, Task
-from .core.seed_pyramids import BrickTarget, create_coordinates, create_coordinates_new, pyramid, pyramid_even
-from .core.brick_manager import towers, wall, wall_pyramid
+from .core.seed_pyramids import (
+    BrickTarget,
+    create_coordinates,
+    create_coordinates_new,
+    pyramid,
+    pyramid_even,
+)
 from .core.structures import STRUCTURES, StructureSpec
 from .errors import ConfigError, PyramidSimError, UnreachableError
 from .output.result import BrickResult, BuildResult, Tolerances

@@ -4,13 +4,13 @@ import mujoco
 import numpy as np
 import pytest
 
-from pyramid_sim.physics import names as c
-from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.config import MotionConfig, SimConfig
-from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.core.poses import Pose
 from pyramid_sim.core.primitives import clear_pose
+from pyramid_sim.physics import names as c
+from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.physics.handles import SceneHandles
+from pyramid_sim.physics.ik import DualArmIK
 
 pytestmark = pytest.mark.physics
 

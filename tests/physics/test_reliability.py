@@ -3,18 +3,17 @@ hold ends with which brick, where and why; a diverging step stops the build; the
 gives the same result twice; a refused command leaves existing results alone."""
 
 import json
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from pyramid_sim.physics.build import prepare
 from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
+from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.judge import judge
+from pyramid_sim.physics.build import prepare
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
-from pyramid_sim.core.structures import StructureSpec
 
 FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of everyone's way
 

@@ -4,8 +4,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from pyramid_sim.physics import names as c
 from pyramid_sim.config import BrickConfig, SimConfig
+from pyramid_sim.physics import names as c
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
 

@@ -6,10 +6,10 @@ import pytest
 
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.plan import make_plan
+from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner
-from pyramid_sim.core.structures import StructureSpec
 
 pytestmark = pytest.mark.physics
 

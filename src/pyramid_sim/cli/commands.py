@@ -12,7 +12,13 @@ import sys
 from ..config import SimConfig
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, write_json_atomic
-from .args import EXIT_FAILED, config_from_args, spec_from_args, sweep_config_from_args, video_config_from_args
+from .args import (
+    EXIT_FAILED,
+    config_from_args,
+    spec_from_args,
+    sweep_config_from_args,
+    video_config_from_args,
+)
 
 
 def cmd_plan(args: argparse.Namespace) -> int:

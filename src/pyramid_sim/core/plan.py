@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .assignment import Assignment, arrange, single_arm
 from ..config import LayoutConfig, SimConfig
 from ..errors import ConfigError
+from .assignment import Assignment, arrange, single_arm
 from .poses import Pose
 from .structures import StructureSpec
 

@@ -14,7 +14,6 @@ from enum import Enum
 from ..config import MotionConfig
 from .poses import Pose, grasp_yaw
 
-
 # Grip this far above the brick centre: at the centre the hand's underside is 6 mm above the
 # brick's top and touched it mid-carry.
 GRASP_HEIGHT = 0.012

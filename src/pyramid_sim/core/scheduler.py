@@ -17,7 +17,6 @@ from enum import Enum
 from typing import Sequence
 
 
-
 class Action(str, Enum):
     PICK = "pick"
     PLACE = "place"

@@ -10,7 +10,14 @@ import mujoco
 import numpy as np
 
 from ..config import SimConfig
-from ..core.incidents import DROP_DISTANCE, MAX_DROPS_PER_BRICK, Drop, Knock, KnockWatch, grip_diagnosis
+from ..core.incidents import (
+    DROP_DISTANCE,
+    MAX_DROPS_PER_BRICK,
+    Drop,
+    Knock,
+    KnockWatch,
+    grip_diagnosis,
+)
 from ..core.primitives import Step, StepKind
 from . import names as c
 from .handles import SceneHandles

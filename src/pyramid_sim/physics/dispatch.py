@@ -8,9 +8,9 @@ from typing import Callable
 from ..config import SimConfig
 from ..core.arm_runner import ArmRunner
 from ..core.plan import Plan
+from ..core.poses import Pose
 from ..core.primitives import Step, StepKind, clear_steps, pick_steps, place_steps
 from ..core.scheduler import Action, LockstepScheduler, Task
-from ..core.poses import Pose
 from . import names as c
 from .spawner import Spawner
 

@@ -13,12 +13,12 @@ import mink
 import mujoco
 import numpy as np
 
+from ..config import SimConfig
+from ..core.poses import Pose, tcp_quaternion, yaw_of
+from ..errors import UnreachableError
 from . import names as c
 from .clearance import arm_geoms
 from .handles import arm_dof_addresses, arm_qpos_addresses
-from ..config import SimConfig
-from ..errors import UnreachableError
-from ..core.poses import Pose, tcp_quaternion, yaw_of
 from .scene import build_spec
 
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost

@@ -6,15 +6,15 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import names as c
 from ..config import SimConfig
-from ..errors import ConfigError, UnreachableError
-from .ik import DualArmIK
 from ..core.plan import Plan, make_plan
 from ..core.poses import Pose
 from ..core.primitives import clear_pose, pick_steps, place_steps
 from ..core.scheduler import other
 from ..core.structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
+from ..errors import ConfigError, UnreachableError
+from . import names as c
+from .ik import DualArmIK
 
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:

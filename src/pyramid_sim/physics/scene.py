@@ -24,9 +24,9 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from . import names as c
 from ..config import SimConfig
 from ..resources import ASSETS
+from . import names as c
 
 ARM_DAMPING = 10.0  # N m s/rad: at 1 or 4 walls built by two arms lose bricks (see README)
 PAD_SOLREF = (0.004, 1.0)

@@ -8,8 +8,8 @@ import math
 import mujoco
 import numpy as np
 
-from .handles import SceneHandles
 from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
+from .handles import SceneHandles
 
 ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
 ON_SPOT_Z = 0.003  # m

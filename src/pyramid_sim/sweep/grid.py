@@ -11,10 +11,10 @@ import math
 from dataclasses import dataclass, field, replace
 
 from ..config import SimConfig
-from ..params import PARAMS, check_range, param
-from ..errors import ConfigError
 from ..core.plan import ARM_CHOICES
 from ..core.structures import StructureSpec
+from ..errors import ConfigError
+from ..params import PARAMS, check_range, param
 
 MAX_POINTS_PER_AXIS = 50
 MAX_RUNS = 10_000

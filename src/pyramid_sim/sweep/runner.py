@@ -17,8 +17,8 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterable
 
 from ..errors import ConfigError
-from .grid import RunSpec
 from ..output.result import BuildResult
+from .grid import RunSpec
 from .store import KEY_COLUMNS, RESULT_FIELDS
 
 
