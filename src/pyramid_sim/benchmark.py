@@ -96,8 +96,10 @@ class Recording:
     and the wall time of every IK solve. Its `hooks` feed it from the loop."""
 
     def __init__(self, loop: BuildLoop) -> None:
+        self.handles = loop.handles
         self.ctrl: list[np.ndarray] = []
-        self.spawns: list[tuple[int, np.ndarray, np.ndarray]] = []
+        # (physics step, slot, the spawned brick's 7 qpos and 6 qvel): nothing else is written
+        self.spawns: list[tuple[int, int, np.ndarray, np.ndarray]] = []
         self.ik_seconds: list[float] = []
         d = loop.data
         self.qpos0, self.qvel0, self.ctrl0 = d.qpos.copy(), d.qvel.copy(), d.ctrl.copy()
@@ -109,18 +111,23 @@ class Recording:
         self.ctrl.append(data.ctrl.copy())
 
     def spawned(self, slot: int, data: mujoco.MjData) -> None:
-        self.spawns.append((len(self.ctrl), data.qpos.copy(), data.qvel.copy()))
+        q, v = self.handles.brick_qpos[slot], self.handles.brick_dofs[slot]
+        self.spawns.append((len(self.ctrl), slot, data.qpos[q : q + 7].copy(),
+                            data.qvel[v : v + 6].copy()))
 
     def replay(self, model: mujoco.MjModel) -> tuple[float, np.ndarray]:
-        """Step the recorded controls on a fresh MjData: steps per second, final qpos."""
+        """Step the recorded controls on a fresh MjData from the build's start state, setting
+        only each spawned brick where the spawner set it: steps per second, final qpos."""
         d = mujoco.MjData(model)
         d.qpos[:], d.qvel[:], d.ctrl[:] = self.qpos0, self.qvel0, self.ctrl0
         mujoco.mj_forward(model, d)
-        spawns = {i: (q, v) for i, q, v in self.spawns}
+        spawns = {i: (slot, q, v) for i, slot, q, v in self.spawns}
         start = time.perf_counter()
         for i, ctrl in enumerate(self.ctrl):
             if i in spawns:
-                d.qpos[:], d.qvel[:] = spawns[i]
+                slot, q, v = spawns[i]
+                self.handles.place_brick(d, slot, q[:3], q[3:])
+                d.qvel[self.handles.brick_dofs[slot] : self.handles.brick_dofs[slot] + 6] = v
             d.ctrl[:] = ctrl
             mujoco.mj_step(model, d)
         return len(self.ctrl) / (time.perf_counter() - start), d.qpos.copy()

@@ -44,25 +44,42 @@ class BrickConfig:
 
 @dataclass(frozen=True)
 class GripperConfig:
-    """Finger stroke, squeeze force and pad friction.
+    """Squeeze force, pad friction, and the fingers' travel and spacers.
 
-    The stock Panda fingers travel 0-40 mm each (80 mm gap); the brick is 86 mm wide, so the
-    stroke is widened to 50 mm a finger (100 mm gap), the seed's own "width of the gripper" fix.
+    The Panda's fingers travel 0-40 mm each (an 80 mm gap); the brick is 86 mm wide. As the
+    seeds did in hardware (the Brick Manager's wider fingers, DE NIRO's wider finger slots),
+    each finger is mounted `spacer` further out, so the joints keep the real hand's range and
+    grip the brick inside it.
     """
 
     force: float = default("gripper", "force")  # N, squeeze of each pad on the brick
     pad_friction: float = default("gripper", "pad_friction")
-    stroke: float = 0.05  # m per finger
+    stroke: float = 0.04  # m per finger: the real hand's joint range (the URDF's)
+    spacer: float = 0.012  # m each finger is mounted further out than the stock hand
+    open_margin: float = 0.002  # m short of the end of travel the open fingers stop: a knock
+    # while open then pushes a finger against its servo, not into its joint stop
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
     settle_time: float = 0.15  # s after the ramp, for the force to build
     stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:
         check_section("gripper", self)
-        check_range("finger stroke", self.stroke, 0.045, 0.06)
+        check_range("finger stroke", self.stroke, 0.0, 0.04, low_open=True)
+        check_range("finger spacer", self.spacer, 0.0, 0.03)
+        check_range("finger open margin", self.open_margin, 0.0, self.stroke / 2)
         check_range("gripper close time", self.close_time, 0.02, 2.0)
         check_range("gripper settle time", self.settle_time, 0.0, 2.0)
         check_range("gripper stiffness", self.stiffness, 100.0, 1e5)
+
+    @property
+    def open_gap(self) -> float:
+        """The finger-gap command (joint travel of both fingers, m) that opens the hand."""
+        return 2 * (self.stroke - self.open_margin)
+
+    @property
+    def open_width(self) -> float:
+        """The pads' gap with the hand open (m)."""
+        return self.open_gap + 2 * self.spacer
 
 
 @dataclass(frozen=True)
@@ -129,6 +146,7 @@ class SimConfig:
     stall_time: float = 60.0  # s, a build in which no arm finishes a move for this long has failed
     seed: int = 0  # of the spawn jitter: the only randomness in a build
     spare_bricks: int = 3  # in the magazine beyond the structure's, to replace dropped ones
+    slip_limit_mm: float = 5.0  # a brick that slid further in the hand fails the build
 
     def __post_init__(self) -> None:
         check_range("timestep", self.timestep, 0.0005, 0.004)
@@ -137,6 +155,7 @@ class SimConfig:
         check_range("stall time", self.stall_time, 1.0, 36000.0)
         check_count("seed", self.seed, 0, 2**32 - 1)
         check_count("spare bricks", self.spare_bricks, 0, 20)
+        check_range("slip limit (mm)", self.slip_limit_mm, 0.0, 30.0, low_open=True)
         steps = self.motion.control_dt / self.timestep
         if abs(steps - round(steps)) > 1e-9:
             raise ConfigError(

@@ -18,9 +18,11 @@ from ..version import __version__
 from . import args as a
 from . import commands
 
+EXIT_INTERRUPTED = 130  # as a shell reports a process ended by SIGINT
+
 COMMANDS = {
     "plan": commands.cmd_plan, "build": commands.cmd_build, "view": commands.cmd_view,
-    "sweep": commands.cmd_sweep, "reach": commands.cmd_reach,
+    "sweep": commands.cmd_sweep, "reach": commands.cmd_reach, "scene": commands.cmd_scene,
 }
 
 
@@ -43,6 +45,11 @@ def make_parser() -> a.Parser:
     a.add_sweep_args(sub.add_parser(
         "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and sweep.png"
     ))
+    scene = sub.add_parser("scene", help="write the compiled scene of a build (.mjb or .xml)")
+    a.add_structure_args(scene)
+    a.add_physics_args(scene)
+    scene.add_argument("--out", type=Path, required=True, metavar="FILE",
+                       help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)")
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     reach.add_argument("--arms", type=a.one_of("arms", (*ARM_CHOICES, "all")), default="all",
                        help="which arm set to check (default all three)")
@@ -67,6 +74,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (PyramidSimError, OSError) as err:
         print(f"pyramid-sim: failed: {err}", file=sys.stderr)
         return a.EXIT_FAILED
+    except KeyboardInterrupt:  # Ctrl-C: partial files are already gone; no traceback
+        print("pyramid-sim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 __all__ = ["main", "make_parser"]

@@ -11,7 +11,7 @@ import sys
 
 from ..config import SimConfig
 from ..errors import ConfigError
-from ..output.files import check_writable_dir, write_json_atomic
+from ..output.files import check_writable_dir, removed_if_failed, write_json_atomic
 from .args import (
     EXIT_FAILED,
     config_from_args,
@@ -22,10 +22,12 @@ from .args import (
 
 
 def cmd_plan(args: argparse.Namespace) -> int:
-    from ..core.plan import make_plan
+    """The plan as JSON, its every pose checked by IK first: a plan `build` would refuse is
+    refused here too."""
+    from ..physics.build import prepare
 
     config = config_from_args(args)
-    plan = make_plan(spec_from_args(args, config), config, args.arms)
+    plan = prepare(spec_from_args(args, config), config, args.arms)
     print(json.dumps(plan.to_json(), indent=2))
     return 0
 
@@ -55,7 +57,9 @@ def cmd_build(args: argparse.Namespace) -> int:
     plan = prepare(spec, config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
     snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
+    folders = [args.out, *(p.parent for p in (args.video, args.snapshot) if p is not None)]
     with (
+        removed_if_failed(folders),
         tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
         tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
     ):
@@ -63,24 +67,36 @@ def cmd_build(args: argparse.Namespace) -> int:
             plan, config, on_placed=lambda n: bar.update(1), video=video,
             on_frame=lambda n: frames.update(1), snapshot=snapshot,
         )
-    write_json_atomic(args.out / "result.json", result.to_json())
-    worst = result.worst_error_xy_mm
-    print(
-        f"{result.bricks_placed}/{result.bricks_total} bricks in place, worst xy "
-        f"error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, max slip "
-        f"{result.max_slip_mm} mm, {result.sim_s_per_brick} sim s/brick, "
-        f"{result.real_time_factor}x real time, {result.drops} drops -> "
-        f"{args.out / 'result.json'}"
-    )
+        write_json_atomic(args.out / "result.json", result.to_json())
+    print(_summary(result, args))
     if not result.success:
         print(f"build failed: {result.failure_reason}", file=sys.stderr)
         return EXIT_FAILED
     return 0
 
 
+def _summary(result, args: argparse.Namespace) -> str:
+    """The one line a build ends with: what was built, how well, and every file written."""
+    worst = result.worst_error_xy_mm
+    slip = "-" if result.max_slip_mm is None else f"{result.max_slip_mm}"
+    files = [str(args.out / "result.json")]
+    files += [str(p) for p in (args.video, args.snapshot) if p is not None]
+    return (
+        f"{result.bricks_placed}/{result.bricks_total} bricks in place, worst xy "
+        f"error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, max slip "
+        f"{slip} mm, {result.sim_s_per_brick} sim s/brick, "
+        f"{result.real_time_factor}x real time, {result.drops} drops -> {', '.join(files)}"
+    )
+
+
 def cmd_view(args: argparse.Namespace) -> int:
+    import os
     import time
 
+    if sys.platform.startswith("linux") and not (
+        os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    ):
+        raise ConfigError("view: no display (DISPLAY is not set); use build --video instead")
     import mujoco.viewer
 
     from ..physics.build import prepare
@@ -126,11 +142,33 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         )
     print(report(rows, config, args.out))
     ok = sum(r["success"] == "true" for r in rows)
+    broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
     print(
         f"{ok}/{len(rows)} builds succeeded ({ran} run now, {runs - ran} already in the CSV) -> "
         f"{args.out / 'sweep.csv'}, {args.out / 'sweep.png'}"
     )
-    return 0 if len(rows) == runs else EXIT_FAILED
+    if broken:
+        print(f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
+              "their points measure nothing (see failure_reason in sweep.csv)", file=sys.stderr)
+    return 0 if len(rows) == runs and not broken else EXIT_FAILED
+
+
+def cmd_scene(args: argparse.Namespace) -> int:
+    """The compiled model a build of these options runs, with its bricks parked, to a file."""
+    from ..core.plan import make_plan
+
+    config = config_from_args(args)
+    plan = make_plan(spec_from_args(args, config), config, args.arms)
+    if args.out.suffix.lower() not in (".mjb", ".xml"):
+        raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
+    check_writable_dir(args.out.parent)
+    from ..physics.scene import write_scene
+
+    with removed_if_failed([args.out.parent]):
+        model = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
+    print(f"{model.nbody} bodies, {model.ngeom} geoms, {model.nu} actuators, "
+          f"{len(plan.bricks) + config.spare_bricks} bricks -> {args.out}")
+    return 0
 
 
 def cmd_reach(args: argparse.Namespace) -> int:

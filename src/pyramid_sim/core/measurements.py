@@ -30,9 +30,12 @@ class Measurements:
     zone_violations: int
     finger_limit_mm: float
     joint_speed_ratio: float
-    joint_torque_ratio: float
+    joint_torque_ratio: float  # demanded: the servo's unclamped output plus gravity compensation
+    torque_joint: int | None  # which arm joint (0-6 left, 7-13 right) demanded the most
     warnings: dict[str, int]
     failure: str | None
+    idle_motion_mm: float  # the furthest a brick moved before an arm reached for it
+    contact_friction: dict[str, float]  # sliding friction of brick-brick, -table, pad-brick
     closest_arm_m: float
     closest_arm_time: float | None
     physics_steps: int

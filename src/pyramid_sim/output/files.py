@@ -61,3 +61,25 @@ def check_writable_dir(path: Path, what: str = "out") -> None:
             pass
     except OSError as err:
         raise ConfigError(f"{what}: {str(probe)!r} is not writable ({err.strerror})") from None
+
+
+@contextmanager
+def removed_if_failed(folders: list[Path]) -> Iterator[None]:
+    """Folders that do not exist yet and are made inside the block are removed again, if
+    still empty, when the block fails or is interrupted: a refused or stopped run leaves no
+    empty folders behind."""
+    new: list[Path] = []
+    for folder in folders:
+        folder = folder.resolve()
+        while not folder.exists() and folder not in new:
+            new.append(folder)
+            folder = folder.parent
+    try:
+        yield
+    except BaseException:
+        for folder in sorted(new, key=lambda f: len(f.parts), reverse=True):
+            try:
+                folder.rmdir()  # only if empty
+            except OSError:
+                pass
+        raise

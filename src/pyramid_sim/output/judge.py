@@ -56,26 +56,60 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
     return tuple(rows)
 
 
-def failure_reason(measured: Measurements, bricks: tuple[BrickResult, ...]) -> str | None:
-    """Why the build failed, or None: the loop's own reason first, else what is wrong now.
-    A drop the build recovered from does not fail it: the structure is judged as it stands."""
-    n = len(bricks)
-    placed = sum(b.placed for b in bricks)
-    over_speed = measured.joint_speed_ratio > 1.0
+FINGER_GIVE_MM = 0.1  # a finger joint's soft limit gives this much under the squeeze
+IDLE_MOTION_LIMIT_MM = 1.0  # a brick nobody touched has moved: something threw it
+
+
+def checks(
+    measured: Measurements, bricks: tuple[BrickResult, ...], config: SimConfig
+) -> dict[str, bool]:
+    """Each condition of a successful build, True where it holds."""
+    slips = [v for v in measured.slip_mm.values() if math.isfinite(v)]
+    return {
+        "finished": measured.failure is None,
+        "bricks_in_place": all(b.placed for b in bricks),
+        "slip": max(slips, default=0.0) <= config.slip_limit_mm,
+        "arm_arm_contacts": measured.arm_arm_contacts == 0,
+        "shared_zone": measured.zone_violations == 0,
+        "joint_speed": measured.joint_speed_ratio <= 1.0,
+        "joint_torque": measured.joint_torque_ratio <= 1.0,
+        "finger_range": measured.finger_limit_mm <= FINGER_GIVE_MM,
+        "idle_bricks": measured.idle_motion_mm <= IDLE_MOTION_LIMIT_MM,
+    }
+
+
+def failure_reason(
+    measured: Measurements, bricks: tuple[BrickResult, ...], held: dict[str, bool],
+    config: SimConfig,
+) -> str | None:
+    """Why the build failed, or None: the loop's own reason first, else every check that
+    failed. A drop the build recovered from does not fail it: the structure is judged as it
+    stands."""
     if measured.failure is not None:
         return measured.failure
-    if placed == n and measured.arm_arm_contacts == 0 and not over_speed:
+    if all(held.values()):
         return None
+    n = len(bricks)
     missing = [b.index for b in bricks if not b.placed]
-    problems = [f"{n - placed} of {n} bricks not in place (build order {missing})"] if missing else []
-    if measured.dropped:
+    problems = [f"{len(missing)} of {n} bricks not in place (build order {missing})"] if missing else []
+    if missing and measured.dropped:
         problems.append(f"bricks dropped (build order {sorted(measured.dropped)})")
-    if measured.knocks:
+    if missing and measured.knocks:
         problems.append(f"bricks knocked off (build order {[k.brick for k in measured.knocks]})")
-    if measured.arm_arm_contacts:
-        problems.append(f"{measured.arm_arm_contacts} arm-arm contacts")
-    if over_speed:
-        problems.append(f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit")
+    slips = [v for v in measured.slip_mm.values() if math.isfinite(v)]
+    texts = {
+        "slip": f"a brick slid {max(slips, default=0.0):.1f} mm in the hand, over the "
+                f"{config.slip_limit_mm:g} mm limit",
+        "arm_arm_contacts": f"{measured.arm_arm_contacts} arm-arm contacts",
+        "shared_zone": f"both arms in the shared zone at {measured.zone_violations} control steps",
+        "joint_speed": f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit",
+        "joint_torque": f"arm joint {measured.torque_joint} demanded "
+                        f"{measured.joint_torque_ratio:.2f} of its torque limit (servo and "
+                        "gravity compensation)",
+        "finger_range": f"a finger went {measured.finger_limit_mm:.2f} mm past its joint range",
+        "idle_bricks": f"a brick nobody had touched moved {measured.idle_motion_mm:.1f} mm",
+    }
+    problems += [text for name, text in texts.items() if not held[name]]
     return "; ".join(problems)
 
 
@@ -93,11 +127,14 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
     n = len(bricks)
     slips = [v for v in measured.slip_mm.values() if math.isfinite(v)]
     errors = [b.error_xy_mm for b in bricks]
-    reason = failure_reason(measured, bricks)
+    held = checks(measured, bricks, config)
+    reason = failure_reason(measured, bricks, held, config)
     wall = measured.wall_time
     return BuildResult(
         success=reason is None,
         failure_reason=reason,
+        checks=held,
+        failed_checks=tuple(name for name, ok in held.items() if not ok),
         structure=measured.plan.structure,
         size=dict(measured.plan.spec.size),
         arms=measured.plan.arms,
@@ -110,6 +147,7 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         real_time_factor=round(measured.sim_time / wall, 3) if wall > 0 else None,
         sim_s_per_brick=round(measured.sim_time / n, 3) if n else None,
         max_slip_mm=round(max(slips), 3) if slips else None,
+        slip_limit_mm=config.slip_limit_mm,
         drops=len(measured.drops),
         recoveries=sum(any(b.index == d.brick and b.placed for b in bricks) for d in measured.drops),
         drop_events=tuple(measured.drops),
@@ -123,6 +161,8 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         finger_limit_excess_mm=round(measured.finger_limit_mm, 4),
         max_joint_speed_ratio=round(measured.joint_speed_ratio, 4),
         max_joint_torque_ratio=round(measured.joint_torque_ratio, 4),
+        max_idle_brick_motion_mm=round(measured.idle_motion_mm, 3),
+        contact_friction={k: round(v, 6) for k, v in measured.contact_friction.items()},
         mujoco_warnings=dict(measured.warnings),
         physics_steps=measured.physics_steps,
         inputs=inputs_of(measured.plan, config),

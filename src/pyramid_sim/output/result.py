@@ -100,6 +100,8 @@ class BuildResult:
 
     success: bool
     failure_reason: str | None
+    checks: dict[str, bool]  # each condition of success, True where it held
+    failed_checks: tuple[str, ...]
     structure: str
     size: dict[str, int]
     arms: str
@@ -112,6 +114,7 @@ class BuildResult:
     real_time_factor: float | None
     sim_s_per_brick: float | None
     max_slip_mm: float | None
+    slip_limit_mm: float
     drops: int
     recoveries: int
     drop_events: tuple[Drop, ...]
@@ -122,7 +125,9 @@ class BuildResult:
     shared_zone_violations: int
     finger_limit_excess_mm: float
     max_joint_speed_ratio: float
-    max_joint_torque_ratio: float
+    max_joint_torque_ratio: float  # demanded (servo + gravity compensation) over the limit
+    max_idle_brick_motion_mm: float  # the furthest a brick moved before an arm reached for it
+    contact_friction: dict[str, float]  # brick_brick, brick_table, pad_brick, from the model
     mujoco_warnings: dict[str, int]
     physics_steps: int
     inputs: BuildInputs
@@ -138,6 +143,8 @@ class BuildResult:
                 value = [b.to_json() for b in value]
             elif name in ("drop_events", "knocked_off"):
                 value = [e.as_json() for e in value]
+            elif name == "failed_checks":
+                value = list(value)
             elif name in ("inputs", "video"):
                 if value is None:
                     continue

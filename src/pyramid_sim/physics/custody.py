@@ -52,6 +52,11 @@ class BrickCustody:
         self.knocks: list[Knock] = []
         self.knock_watch = KnockWatch()
         self.failure: str | None = None  # set when a brick has been dropped too often
+        # Where each brick lay when it was last put down by the magazine or the spawner, and
+        # the bricks no arm has reached for yet: how far those move is `idle_motion`.
+        self.rest = np.array([data.qpos[q : q + 3] for q in handles.brick_qpos])
+        self.untouched = set(range(handles.n_bricks))
+        self.idle_motion = 0.0  # m, the furthest a brick moved before an arm reached for it
 
     def tcp(self, arm: str) -> tuple[np.ndarray, np.ndarray]:
         site = self.handles.tcp_site[arm]
@@ -60,6 +65,22 @@ class BrickCustody:
     def brick_in_tcp(self, arm: str, slot: int) -> np.ndarray:
         p, r = self.tcp(arm)
         return r.T @ (self.data.xpos[self.handles.brick_body[slot]] - p)
+
+    def _note_idle(self, slot: int) -> None:
+        q = self.handles.brick_qpos[slot]
+        moved = float(np.linalg.norm(self.data.qpos[q : q + 3] - self.rest[slot]))
+        self.idle_motion = max(self.idle_motion, moved)
+
+    def reached(self, slot: int) -> None:
+        """An arm's fingers are around the brick in `slot`: from now on it is handled."""
+        if slot in self.untouched:
+            self._note_idle(slot)
+            self.untouched.discard(slot)
+
+    def finish(self) -> None:
+        """At the end of a build: how far the bricks nobody reached for have moved."""
+        for slot in self.untouched:
+            self._note_idle(slot)
 
     def gripped(self, arm: str, brick: int) -> None:
         """The arm closed on the brick lying on the spot, for build-order place `brick`."""
@@ -135,8 +156,11 @@ class BrickCustody:
         if back is not None:
             self.lost.remove(back)
             self.spawner.put_back(back)
-        elif self.spawner.remaining > 0 and self.spawner.spot_clear(
-            d, [self.tcp(a)[0] for a in c.ARMS]
-        ):
-            return self.spawner.spawn_next(d)
+        elif self.spawner.remaining > 0 and self.spawner.spot_clear(d):
+            slot = self.spawner.next_slot
+            self._note_idle(slot)  # parked until now
+            self.spawner.spawn_next(d)
+            q = self.handles.brick_qpos[slot]
+            self.rest[slot] = d.qpos[q : q + 3]
+            return slot
         return None

@@ -9,7 +9,7 @@ from ..config import SimConfig
 from ..core.arm_runner import ArmRunner
 from ..core.plan import Plan
 from ..core.poses import Pose
-from ..core.primitives import Step, StepKind, clear_steps, pick_steps, place_steps
+from ..core.primitives import Step, clear_steps, pick_steps, place_steps
 from ..core.scheduler import Action, LockstepScheduler, Task
 from . import names as c
 from .spawner import Spawner
@@ -23,7 +23,7 @@ class ArmDispatch:
     ) -> None:
         self.plan, self.config, self.spawner = plan, config, spawner
         self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
-        self.runners = {a: ArmRunner(a, config, tcp[a], 2 * config.gripper.stroke) for a in c.ARMS}
+        self.runners = {a: ArmRunner(a, config, tcp[a], config.gripper.open_gap) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
         self._settle_until: float | None = None
@@ -80,7 +80,7 @@ class ArmDispatch:
         self.task_of[arm] = task
 
     def advance(
-        self, arm: str, ik_error: float, on_done: Callable[[str, StepKind, Task | None], None]
+        self, arm: str, ik_error: float, on_done: Callable[[str, Step, Task | None], None]
     ) -> Pose:
         """One control tick of the arm (unless held); `on_done` hears a finished step before
         the scheduler hears of a finished task. Returns the pose the arm is commanded to."""
@@ -88,7 +88,7 @@ class ArmDispatch:
         if runner.busy and not self.held(arm):
             done = runner.tick(self.config.motion.control_dt, ik_error)
             if done is not None:
-                on_done(arm, done.kind, self.task_of[arm])
+                on_done(arm, done, self.task_of[arm])
                 if not runner.busy and not self.scheduler.finished:
                     self.scheduler.complete(arm)
         return runner.pose

@@ -12,10 +12,11 @@ from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
 from ..core.primitives import Step, StepKind, clear_pose
-from ..core.scheduler import Task
+from ..core.scheduler import Action, Task
 from ..core.zone import shared_zone
 from . import names as c
 from .clearance import ArmClearance
+from .contacts import contact_frictions
 from .custody import BrickCustody
 from .dispatch import ArmDispatch
 from .handles import SceneHandles
@@ -26,7 +27,7 @@ from .scene import build_scene
 from .spawner import Spawner
 from .stops import stall_reason, warning_reason
 
-SPOT_CLEAR_RADIUS = 0.16  # m: no brick or hand this near the spawn spot when a brick is set on it
+SPOT_CLEARANCE = 0.02  # m: no brick or arm link this near the spawn volume when a brick is set
 
 
 class BuildLoop:
@@ -45,7 +46,7 @@ class BuildLoop:
             plan.spawn, [b.target.pose for b in plan.bricks], config.brick.length / 2, 0.04
         )
         self.spawner = Spawner(
-            h, plan.spawn, clear_radius=SPOT_CLEAR_RADIUS,
+            m, h, plan.spawn, clearance=SPOT_CLEARANCE,
             jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
         )
         self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
@@ -57,6 +58,7 @@ class BuildLoop:
         self.monitor = StepMonitor(
             m, self.data,
             dofs=np.concatenate([h.arm_dofs[a] for a in c.ARMS]),
+            qpos=np.concatenate([h.arm_qpos[a] for a in c.ARMS]),
             actuators=np.concatenate([h.arm_actuators[a] for a in c.ARMS]),
             fingers=np.concatenate([h.finger_qpos[a] for a in c.ARMS]),
             finger_stroke=config.gripper.stroke,
@@ -75,9 +77,9 @@ class BuildLoop:
         for a in c.ARMS:
             d.qpos[h.arm_qpos[a]] = start[a]
             d.ctrl[h.arm_actuators[a]] = start[a]
-            d.ctrl[h.gripper[a]] = 2 * grip.stroke
+            d.ctrl[h.gripper[a]] = grip.open_gap
             for q in h.finger_qpos[a]:
-                d.qpos[q] = grip.stroke
+                d.qpos[q] = grip.open_gap / 2
         self.ik.reset(start["left"], start["right"])
         mujoco.mj_forward(self.model, d)
 
@@ -109,9 +111,14 @@ class BuildLoop:
         for a in c.ARMS:
             self.ik.set_target(a, self.dispatch.advance(a, self.ik.error(a)[0], self._on_step_done))
 
-    def _on_step_done(self, arm: str, kind: StepKind, task: Task | None) -> None:
+    def _on_step_done(self, arm: str, step: Step, task: Task | None) -> None:
         self.last_progress = self.data.time
-        if kind is StepKind.GRIP:
+        kind = step.kind
+        picking = task is not None and task.action is Action.PICK
+        if kind is StepKind.MOVE and step.name == "servo" and picking:
+            if self.spawner.current is not None:  # the fingers are around it: handled now
+                self.custody.reached(self.spawner.current)
+        elif kind is StepKind.GRIP:
             assert task is not None and task.brick is not None
             self.custody.gripped(arm, task.brick)
         elif kind is StepKind.RELEASE:
@@ -194,6 +201,7 @@ class BuildLoop:
             if failure is not None:
                 break
         self.monitor.flush()
+        self.custody.finish()
         return self._measurements(failure, time.perf_counter() - start)
 
     def _measurements(self, failure: str | None, wall: float) -> Measurements:
@@ -222,6 +230,9 @@ class BuildLoop:
             joint_torque_ratio=self.monitor.torque_ratio,
             warnings=warnings,
             failure=failure,
+            torque_joint=self.monitor.torque_joint,
+            idle_motion_mm=custody.idle_motion * 1000.0,
+            contact_friction=contact_frictions(self.model, self.handles),
             closest_arm_m=self.clearance.closest,
             closest_arm_time=self.clearance.closest_time,
             physics_steps=self.steps,

@@ -1,8 +1,11 @@
 """What the physics loop watches every physics step, at a few array copies a step, and
 whether MuJoCo raised a warning.
 
-Each step copies the spans of qvel, actuator_force and qpos that hold the arms, and the arm-arm
-contact count, into one row of a buffer; the buffer is reduced when full and at the end. Per-step
+Each step copies the spans of qvel, qpos, ctrl and qfrc_gravcomp that hold the arms, and the
+arm-arm contact count, into one row of a buffer; the buffer is reduced when full and at the end.
+The torque is the one demanded: the servo's unclamped output worked out from its gain and bias
+plus the gravity compensation the joint carries (MuJoCo's `actuator_force` is already clamped
+to the limit, so it could never show an excess). Per-step
 Python work is the price the build pays over bare `mj_step`, so it is kept to these copies
 (a contiguous slice copies in a third of the time of a fancy index).
 """
@@ -31,20 +34,28 @@ class _Span:
 
 
 class StepMonitor:
-    """Peaks of joint speed and torque (as fractions of the Panda's limits), finger travel past
-    its joint range, and the number of arm-arm contacts, over every physics step."""
+    """Peaks of joint speed and demanded torque (as fractions of the arm's limits), finger
+    travel past its joint range, and the number of arm-arm contacts, over every physics step.
+    `dofs`, `qpos` and `actuators` list the arm joints in one order (actuator k drives the joint
+    at qpos[k] and dof k)."""
 
     def __init__(
         self,
         model: mujoco.MjModel,
         data: mujoco.MjData,
         dofs: np.ndarray,
+        qpos: np.ndarray,
         actuators: np.ndarray,
         fingers: np.ndarray,
         finger_stroke: float,
     ) -> None:
         self._speed = _Span(data.qvel, dofs)
-        self._torque = _Span(data.actuator_force, actuators)
+        self._angle = _Span(data.qpos, qpos)
+        self._ctrl = _Span(data.ctrl, actuators)
+        self._gravity = _Span(data.qfrc_gravcomp, dofs)
+        # A position servo's force before clamping: gain * ctrl + b0 + b1 * q + b2 * qdot.
+        self._gain = model.actuator_gainprm[actuators, 0]
+        self._bias = model.actuator_biasprm[actuators, :3].T
         self._finger = _Span(data.qpos, fingers)
         self._sensors = data.sensordata
         self._warnings = data.warning.number  # counts, kept up by MuJoCo
@@ -55,6 +66,7 @@ class StepMonitor:
         self.stroke = finger_stroke
         self._inv_vel = 1.0 / np.tile(c.JOINT_VELOCITY_LIMITS, len(dofs) // 7)
         self._inv_torque = 1.0 / np.tile(c.JOINT_TORQUE_LIMITS, len(actuators) // 7)
+        self.torque_joint: int | None = None  # arm joint (0-based, both arms) of the peak
         self.speed_ratio = 0.0
         self.torque_ratio = 0.0
         self.finger_excess = 0.0  # m past either end of the finger joints' range
@@ -66,7 +78,9 @@ class StepMonitor:
         counters' bytes costs 0.2 us, so this is checked every physics step."""
         row = self._row
         self._speed.buffer[row] = self._speed.view
-        self._torque.buffer[row] = self._torque.view
+        self._angle.buffer[row] = self._angle.view
+        self._ctrl.buffer[row] = self._ctrl.view
+        self._gravity.buffer[row] = self._gravity.view
         self._finger.buffer[row] = self._finger.view
         self._contacts[row] = self._sensors[self._contact_adr]
         self._row = row + 1
@@ -79,9 +93,14 @@ class StepMonitor:
         n, self._row = self._row, 0
         if n == 0:
             return
-        v, t, f = self._speed.rows(n), self._torque.rows(n), self._finger.rows(n)
+        v, f = self._speed.rows(n), self._finger.rows(n)
+        b0, b1, b2 = self._bias
+        servo = self._gain * self._ctrl.rows(n) + b0 + b1 * self._angle.rows(n) + b2 * v
+        ratio = np.abs(servo + self._gravity.rows(n)) * self._inv_torque
         self.speed_ratio = max(self.speed_ratio, float((np.abs(v) * self._inv_vel).max()))
-        self.torque_ratio = max(self.torque_ratio, float((np.abs(t) * self._inv_torque).max()))
+        peak = float(ratio.max())
+        if peak > self.torque_ratio:
+            self.torque_ratio, self.torque_joint = peak, int(ratio.max(axis=0).argmax())
         over = max(float(f.max()) - self.stroke, -float(f.min()))
         self.finger_excess = max(self.finger_excess, over)
         self.arm_arm_contacts += int(self._contacts[:n].sum())

@@ -24,6 +24,9 @@ GRIPPER_TENDON: Final = "finger_gap"
 JOINT_VELOCITY_LIMITS: Final = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)
 JOINT_TORQUE_LIMITS: Final = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
 JOINT_ACCELERATION_LIMITS: Final = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
+# Joint damping (N m s/rad): 10 on the big joints (at 1 or 4, walls built by two arms lost
+# bricks); 2 on the wrist, whose 12 N m cannot turn the hand at the IK's speed against 10.
+JOINT_DAMPING: Final = (10.0, 10.0, 10.0, 10.0, 2.0, 2.0, 2.0)
 # Position gains from shoulder to wrist (FINDINGS.md).
 JOINT_KP: Final = (4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0)
 
@@ -35,6 +38,7 @@ ARM_ARM_SENSOR: Final = "arm_arm_contacts"  # contacts between the two arms, cou
 
 BRICK_PREFIX: Final = "brick"
 TABLE_GEOM: Final = "table_top"
+SPAWN_VOLUME: Final = "spawn_volume"  # a brick's box at the spawn spot, grown by the jitter
 
 
 def prefixed(arm: str, name: str) -> str:

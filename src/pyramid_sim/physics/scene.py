@@ -2,15 +2,16 @@
 
 The Panda comes from example-robot-data's URDF (collision meshes serve as visuals: the visual
 meshes are .dae, which MuJoCo cannot read). What is changed from the URDF, and why:
-- finger stroke widened from 0-40 mm to `GripperConfig.stroke` per finger: the brick is 86 mm
-  wide, the stock gripper opens 80 mm;
+- each finger mounted `GripperConfig.spacer` further out (the brick is 86 mm wide, the stock
+  gripper opens 80 mm), the finger joints keeping the real hand's 0-40 mm;
 - one force-limited position actuator on a tendon coupling both fingers (command = finger gap),
   the fingers kept symmetric by a joint equality;
 - position actuators on the arm joints with the real arm's torque limits, armature 0.1,
-  damping 1 and gravity compensation (the URDF brings no actuators and almost no damping);
+  damping (JOINT_DAMPING) and gravity compensation that counts against those limits
+  (actuatorgravcomp: the URDF brings no actuators and almost no damping);
 - the rubber finger tips ("pads") get their own friction, stiff contact and a higher priority so a
-  held brick does not creep, while the brick's own friction stays the one of brick-brick and
-  brick-table contacts.
+  held brick does not creep, while the brick's friction is that of brick-brick and brick-table
+  contacts: the table top takes the brick's friction, as MuJoCo mixes two geoms' by the larger.
 """
 
 from __future__ import annotations
@@ -28,10 +29,12 @@ from ..config import SimConfig
 from ..resources import ASSETS
 from . import names as c
 
-ARM_DAMPING = 10.0  # N m s/rad: at 1 or 4 walls built by two arms lose bricks (see README)
 PAD_SOLREF = (0.004, 1.0)
 PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
 PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the robots
+# Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows
+# closer than a brick's length interpenetrate, and MuJoCo throws the bricks across the floor).
+PARK_ROW_PITCH, PARK_COLUMN_PITCH = 0.30, 0.20
 
 
 @lru_cache(maxsize=1)
@@ -62,16 +65,23 @@ def panda_spec(config: SimConfig) -> mujoco.MjSpec:
 
 
 def _tune_arm(spec: mujoco.MjSpec) -> None:
-    for name, kp, torque in zip(c.ARM_JOINTS, c.JOINT_KP, c.JOINT_TORQUE_LIMITS):
+    for name, kp, damping, torque in zip(
+        c.ARM_JOINTS, c.JOINT_KP, c.JOINT_DAMPING, c.JOINT_TORQUE_LIMITS
+    ):
         joint = spec.joint(name)
         joint.armature = 0.1
-        joint.damping = [ARM_DAMPING, 0.0, 0.0]
+        joint.damping = [damping, 0.0, 0.0]
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         act.set_to_position(kp=kp, kv=0.0)
         act.ctrlrange = joint.range
         act.ctrllimited = True
         act.forcerange = [-torque, torque]
         act.forcelimited = True
+        # Gravity compensation is the servo's work, not a free torque: it counts against the
+        # joint's limit together with the servo's output.
+        joint.actgravcomp = True
+        joint.actfrcrange = [-torque, torque]
+        joint.actfrclimited = True
     for body in spec.bodies:
         if body.name.startswith("panda_") and body.name != "panda_link0":
             body.gravcomp = 1.0
@@ -81,9 +91,13 @@ def _add_gripper(spec: mujoco.MjSpec, config: SimConfig) -> None:
     grip = config.gripper
     for joint_name in c.FINGER_JOINTS:
         joint = spec.joint(joint_name)
-        joint.range = [0.0, grip.stroke]
+        joint.range = [0.0, grip.stroke]  # the URDF's own 0-40 mm unless a smaller one is asked
         joint.damping = [2.0, 0.0, 0.0]
         joint.armature = 0.01
+    # The spacers: each finger mounted further out along its own sliding axis.
+    for body_name, joint_name in zip(c.FINGER_BODIES, c.FINGER_JOINTS):
+        body, axis = spec.body(body_name), np.array(spec.joint(joint_name).axis)
+        body.pos = np.array(body.pos) + grip.spacer * axis
     for body_name, pad_name in zip(c.FINGER_BODIES, c.PAD_GEOMS):
         pad = spec.body(body_name).geoms[3]  # the URDF's "rubber tip with which to grasp"
         pad.name = pad_name
@@ -125,7 +139,7 @@ def brick_spec(config: SimConfig) -> mujoco.MjSpec:
 def park_position(slot: int) -> np.ndarray:
     """Where magazine brick `slot` waits: a grid on the floor behind the robots."""
     row, col = divmod(slot, 8)
-    return np.array([-0.55 - 0.14 * row, -0.7 + 0.2 * col, PARK_Z])
+    return np.array([-0.55 - PARK_ROW_PITCH * row, -0.7 + PARK_COLUMN_PITCH * col, PARK_Z])
 
 
 @dataclass(frozen=True)
@@ -141,9 +155,22 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     spec = mujoco.MjSpec.from_file(str(ASSETS / "scene.xml"))
     spec.option.timestep = config.timestep
     layout = config.layout
+    # MuJoCo takes the larger of two geoms' frictions: the table top takes the bricks', so the
+    # swept friction is the friction of brick-table contacts too.
+    spec.geom(c.TABLE_GEOM).friction = [config.brick.friction, 0.005, 0.0001]
     spawn = spec.site("spawn_marker")
     spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
     spawn.quat = _yaw_quat(layout.spawn_yaw)
+    # Where the next brick will be set: no contact, nothing drawn; the spawner measures how
+    # near bricks and arm links are to it.
+    jitter = layout.spawn_jitter_mm / 1000.0
+    brick = config.brick
+    spec.worldbody.add_geom(
+        name=c.SPAWN_VOLUME, type=mujoco.mjtGeom.mjGEOM_BOX, contype=0, conaffinity=0, group=5,
+        size=[brick.length / 2 + jitter, brick.width / 2 + jitter, brick.height / 2],
+        pos=[layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + brick.height / 2],
+        quat=_yaw_quat(layout.spawn_yaw), rgba=[0, 0, 0, 0], mass=0,
+    )
     for arm, base in zip(c.ARMS, (layout.left_base, layout.right_base)):
         frame = spec.worldbody.add_frame(pos=list(base))
         spec.attach(panda_spec(config), prefix=f"{arm}/", frame=frame)
@@ -169,3 +196,18 @@ def build_scene(config: SimConfig, n_bricks: int) -> Scene:
 
 def _yaw_quat(yaw: float) -> list[float]:
     return [math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
+
+
+def write_scene(config: SimConfig, n_bricks: int, path: Path) -> mujoco.MjModel:
+    """The compiled scene of a build, written atomically: `.mjb` (MuJoCo's binary model,
+    self-contained) or `.xml` (MJCF, mesh paths absolute). Returns the model."""
+    from ..output.files import write_atomic
+
+    spec = build_spec(config, n_bricks)
+    model = spec.compile()
+    if path.suffix.lower() == ".mjb":
+        write_atomic(path, lambda tmp: mujoco.mj_saveModel(model, str(tmp), None))
+    else:
+        xml = spec.to_xml()
+        write_atomic(path, lambda tmp: tmp.write_text(xml))
+    return model

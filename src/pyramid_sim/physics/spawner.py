@@ -9,6 +9,8 @@ import mujoco
 import numpy as np
 
 from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
+from . import names as c
+from .clearance import arm_geoms
 from .handles import SceneHandles
 
 ON_SPOT_XY = 0.004  # m beyond the spawn jitter: still picked at the nominal spot
@@ -22,14 +24,17 @@ class Spawner:
 
     def __init__(
         self,
+        model: mujoco.MjModel,
         handles: SceneHandles,
         spawn: Pose,
-        clear_radius: float,
+        clearance: float,
         jitter: float = 0.0,
         seed: int = 0,
     ) -> None:
-        self.spawn = spawn
-        self.clear_radius = clear_radius
+        self.model, self.spawn, self.clearance = model, spawn, clearance
+        self.volume = model.geom(c.SPAWN_VOLUME).id
+        self.arm_geoms = [g for a in c.ARMS for g in arm_geoms(model, a)]
+        self._fromto = np.zeros(6)
         self.jitter = jitter
         self.rng = np.random.default_rng(seed)
         self.handles = handles
@@ -49,11 +54,20 @@ class Spawner:
         if slot == self.current:
             self.current = None
 
-    def spot_clear(self, data: mujoco.MjData, points: list[np.ndarray]) -> bool:
-        """No brick and none of the given points (hands) within clear_radius of the spot."""
-        centre = self.spawn.position
-        bricks = (data.xpos[b] for b in self.body[: self.next_slot])
-        return all(np.linalg.norm(p - centre) > self.clear_radius for p in (*bricks, *points))
+    def spot_clear(self, data: mujoco.MjData) -> bool:
+        """Whether nothing is within `clearance` of the spawn volume (the brick's box at the
+        spot, grown by the jitter): no brick set out so far, no link of either arm. Exact
+        shapes (mj_geomDistance) behind a bounding-sphere filter."""
+        m, vol = self.model, self.volume
+        geoms = [*self.arm_geoms, *(m.body_geomadr[b] for b in self.body[: self.next_slot])]
+        centre, reach = data.geom_xpos[vol], m.geom_rbound[vol] + self.clearance
+        for g in geoms:
+            if np.linalg.norm(data.geom_xpos[g] - centre) - m.geom_rbound[g] > reach:
+                continue
+            gap = mujoco.mj_geomDistance(m, data, vol, int(g), self.clearance, self._fromto)
+            if gap < self.clearance:
+                return False
+        return True
 
     def rests_on_spot(self, data: mujoco.MjData, slot: int) -> bool:
         """Whether the brick in `slot` lies on the spot as spawned (a dropped brick that fell

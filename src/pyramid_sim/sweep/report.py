@@ -128,6 +128,7 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         ax.set_yticks(range(len(ys)), ys if y else [""])
         ax.set_ylabel(y.label if y else "")
         ax.set_title(title)
+        _draw_coulomb_limit(ax, config, x, y)
         fig.colorbar(image, ax=ax, extend="neither" if title == "success rate" else "max")
     fig.suptitle(_title(config, x, y))
     try:
@@ -148,3 +149,33 @@ def _title(config: SweepConfig, x: Axis, y: Axis | None) -> str:
         f"{config.repeats} run(s) a point, spawn jitter {config.spawn_jitter_mm:g} mm; {fixed}"
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )
+
+
+GRAVITY = 9.81
+
+
+def coulomb_mass_limit(grip_force: float, pad_friction: float) -> float:
+    """The heaviest brick (kg) two pads pressing with `grip_force` each can hold at rest:
+    2 mu F / g, Coulomb's law."""
+    return 2.0 * pad_friction * grip_force / GRAVITY
+
+
+def _draw_coulomb_limit(ax, config: SweepConfig, x: Axis, y: Axis | None) -> None:
+    """On a grip force x brick mass map (either way round, pad friction held), the line
+    where the bricks' weight equals the pads' friction at rest, in the cells' coordinates."""
+    import numpy as np
+
+    if y is None or {x.name, y.name} != {"grip_force", "brick_mass"}:
+        return
+    pad = next(a for a in config.full_axes() if a.name == "pad_friction")
+    if len(pad.values) != 1 or any(np.any(np.diff(a.values) <= 0) for a in (x, y)):
+        return  # one line only for one pad friction, and on ordered axes
+    force_axis, mass_axis = (x, y) if x.name == "grip_force" else (y, x)
+    forces = np.linspace(force_axis.values[0], force_axis.values[-1], 100)
+    masses = coulomb_mass_limit(forces, pad.values[0])
+    fi = np.interp(forces, force_axis.values, range(len(force_axis.values)))
+    mi = np.interp(masses, mass_axis.values, range(len(mass_axis.values)), left=np.nan, right=np.nan)
+    xs, ys = (fi, mi) if x is force_axis else (mi, fi)
+    ax.plot(xs, ys, color="white", linestyle="--", linewidth=1.5,
+            label=f"Coulomb limit 2 mu F / g (mu {pad.values[0]:g})")
+    ax.legend(loc="upper left", fontsize=7, framealpha=0.6)

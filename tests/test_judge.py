@@ -1,0 +1,64 @@
+"""The judge, without physics: every check of a successful build can fail, and the reason
+names it (the physics tests make the same checks fire in real builds)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import pyramid_sim
+from pyramid_sim.config import SimConfig
+from pyramid_sim.core.measurements import Measurements
+from pyramid_sim.output.judge import judge
+
+CONFIG = SimConfig()
+
+
+def _measured(**changes) -> Measurements:
+    plan = pyramid_sim.plan("pyramid", layers=1)
+    target = plan.bricks[0].target.pose
+    good = Measurements(
+        plan=plan, slot_of={0: 0}, final_pos=np.array([target.position]),
+        final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]), slip_mm={0: 1.0}, drops=(), knocks=(),
+        sim_time=12.0, wall_time=1.0, arm_arm_contacts=0, zone_violations=0,
+        finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
+        warnings={}, failure=None, idle_motion_mm=0.0,
+        contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
+        closest_arm_m=0.1, closest_arm_time=1.0, physics_steps=6000,
+    )
+    return replace(good, **changes)
+
+
+def test_a_clean_build_passes_every_check():
+    result = judge(_measured(), CONFIG)
+    assert result.success and result.failure_reason is None and result.failed_checks == ()
+    assert all(result.checks.values()) and result.slip_limit_mm == 5.0
+
+
+@pytest.mark.parametrize(
+    "changes, check, words",
+    [
+        ({"failure": "stalled at t = 70 s"}, "finished", "stalled"),
+        ({"final_pos": np.array([[0.0, 0.0, 0.0]])}, "bricks_in_place", "1 of 1 bricks not in place"),
+        ({"slip_mm": {0: 5.5}}, "slip", "slid 5.5 mm in the hand, over the 5 mm limit"),
+        ({"arm_arm_contacts": 2}, "arm_arm_contacts", "2 arm-arm contacts"),
+        ({"zone_violations": 4}, "shared_zone", "both arms in the shared zone"),
+        ({"joint_speed_ratio": 1.02}, "joint_speed", "1.02 of its velocity limit"),
+        ({"joint_torque_ratio": 1.19}, "joint_torque", "arm joint 3 demanded 1.19"),
+        ({"finger_limit_mm": 3.0}, "finger_range", "3.00 mm past its joint range"),
+        ({"idle_motion_mm": 52.0}, "idle_bricks", "nobody had touched moved 52.0 mm"),
+    ],
+)
+def test_each_check_fails_the_build_and_is_named(changes, check, words):
+    result = judge(_measured(**changes), CONFIG)
+    assert not result.success and check in result.failed_checks
+    assert result.checks[check] is False
+    assert words in result.failure_reason
+    assert result.to_json()["failed_checks"] == list(result.failed_checks)
+
+
+def test_the_slip_limit_is_a_setting():
+    strict = replace(CONFIG, slip_limit_mm=0.5)
+    assert "slip" in judge(_measured(), strict).failed_checks
+    with pytest.raises(pyramid_sim.ConfigError, match="slip limit"):
+        replace(CONFIG, slip_limit_mm=0.0)
