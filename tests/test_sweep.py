@@ -184,3 +184,16 @@ def test_ray_gives_the_same_rows_as_processes(tmp_path):
     assert len(rows["ray"]) == 2
     assert rows["ray"] == rows["process"]
     assert [r["success"] for r in rows["ray"]] == ["false", "true"]  # outcomes differ: 1 N drops
+
+
+def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
+    """2 mu F / g: 20 N a pad at pad friction 1 holds 4.08 kg at rest; the map with grip
+    force and brick mass on its axes draws that line over the cells."""
+    from pyramid_sim.sweep.report import coulomb_mass_limit
+
+    assert coulomb_mass_limit(20.0, 1.0) == pytest.approx(4.077, abs=1e-3)
+    config = SweepConfig(axes=(parse_axis("grip_force", "2:20:3"), parse_axis("brick_mass", "0.5,1")))
+    rows = [{k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
+             for k, v in row.items()} for row in _spec_rows(config)]
+    write_heatmaps(rows, config, tmp_path / "map.png")
+    assert (tmp_path / "map.png").stat().st_size > 10_000

@@ -25,6 +25,7 @@ def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
     proc = _run(["--out", "a", "--video", "a/build.mp4", "--fps", "20", "--width", "320",
                  "--height", "240", "--snapshot", "a/final.png"], tmp_path)
     assert proc.returncode == 0, proc.stderr
+    assert "a/result.json, a/build.mp4, a/final.png" in proc.stdout  # the summary names each
     doc = json.loads((tmp_path / "a" / "result.json").read_text())
     reader = imageio.get_reader(tmp_path / "a" / "build.mp4")
     frames = [f for f in reader]
@@ -45,7 +46,7 @@ def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["--video", "/proc/nope/x.mp4"], "not writable"),
+        (["--video", "/proc/nope/x.mp4"], "mp4 path: '/proc' is not writable"),
         (["--video", "v.mp4", "--camera", "sky"], "camera"),
         (["--video", "v.mp4", "--width", "4000"], "width"),
         (["--video", "v.txt"], "mp4"),
@@ -77,4 +78,27 @@ def test_a_terminated_run_leaves_no_video_behind(tmp_path):
     time.sleep(1.0)
     proc.send_signal(signal.SIGTERM)
     assert proc.wait(timeout=60) == 128 + signal.SIGTERM
-    assert list((tmp_path / "t").iterdir()) == []
+    assert not (tmp_path / "t").exists()  # nor the folder the run made for it
+
+
+def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
+    """SIGINT mid-build with video: exit 130, one line and no traceback, no MP4, no temporary
+    file and no folder the run made."""
+    import signal
+    import time
+
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers",
+         "2", "--quiet", "--out", "i/run", "--video", "i/run/build.mp4"],
+        env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not list((tmp_path / "i" / "run").glob(".build.*")):
+        time.sleep(0.2)
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.strip() == "pyramid-sim: interrupted"
+    assert not (tmp_path / "i").exists()

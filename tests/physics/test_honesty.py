@@ -173,7 +173,7 @@ def test_the_spawn_spot_is_clear_only_of_real_shapes(offset, clear):
     data = mujoco.MjData(model)
     handles = SceneHandles(model, 2)
     plan = pyramid_sim.plan("pyramid", layers=1)
-    spawner = Spawner(model, handles, plan.spawn, clearance=0.02)
+    spawner = Spawner(model, handles, plan.spawn, clearance=0.02, arm_clearance=0.1)
     spawner.spawn_next(data)  # brick 0 on the spot...
     yaw = plan.spawn.yaw  # ...then moved along the spawn axis (its long axis)
     position = plan.spawn.position + offset * np.array([np.cos(yaw), np.sin(yaw), 0.0])
@@ -186,7 +186,8 @@ def test_the_spawn_spot_check_sees_every_link_of_both_arms():
     from pyramid_sim.physics.clearance import arm_geoms
 
     model = build_scene(SimConfig(), 1).model
-    spawner = Spawner(model, SceneHandles(model, 1), pyramid_sim.plan().spawn, clearance=0.02)
+    spawner = Spawner(model, SceneHandles(model, 1), pyramid_sim.plan().spawn, clearance=0.02,
+                      arm_clearance=0.1)
     links = {model.geom_bodyid[g] for g in spawner.arm_geoms}
     for arm in c.ARMS:
         assert set(arm_geoms(model, arm)) <= set(spawner.arm_geoms)

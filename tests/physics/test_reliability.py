@@ -70,12 +70,14 @@ def test_a_brick_knocked_off_the_structure_is_reported(teleport):
     assert doc["bricks"][1]["placed"]
 
 
-def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_path):
+def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_path, capsys):
     out = tmp_path / "heavy"
     code = main(["build", "--structure", "pyramid-even", "--layers", "1", "--brick-mass", "5",
                  "--quiet", "--out", str(out)])
     doc = json.loads((out / "result.json").read_text())
     assert code == 1 and not doc["success"]
+    assert "0/2 bricks in place" in (out_text := capsys.readouterr().out)
+    assert "max slip - mm" in out_text and "None" not in out_text
     reason = doc["failure_reason"]
     assert "brick 0 dropped 3 times" in reason and "during 'retract'" in reason
     assert "cannot carry the brick's weight (49.1 N at 5 kg)" in reason

@@ -18,7 +18,7 @@ def test_scene_holds_two_pandas_a_table_and_the_magazine():
         for joint in c.ARM_JOINTS:
             assert model.actuator(c.prefixed(arm, joint)).forcerange[1] in c.JOINT_TORQUE_LIMITS
         finger = model.joint(c.prefixed(arm, c.FINGER_JOINTS[0]))
-        assert finger.range[1] == 0.05  # widened for the 86 mm brick
+        assert finger.range[1] == 0.04  # the real hand's: the brick is spanned with spacers
     assert model.geom(c.TABLE_GEOM) is not None
     assert sum(model.body(i).name.endswith("/brick") for i in range(model.nbody)) == 5
 
@@ -56,6 +56,7 @@ def test_arm_arm_contact_sensor_counts_only_contacts_between_the_arms():
     model = build_scene(SimConfig(), 1).model
     data = mujoco.MjData(model)
     adr = model.sensor(c.ARM_ARM_SENSOR).adr[0]
+    SceneHandles(model, 1).place_brick(data, 0, [0.6, 0.0, 0.109])  # 1 mm into the table
     reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]
     for yaw in (0.0, 1.57):  # forward, then each arm turned towards the other
         _arm_pose(model, data, "left", [-yaw, *reach])

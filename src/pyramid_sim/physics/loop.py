@@ -16,18 +16,19 @@ from ..core.scheduler import Action, Task
 from ..core.zone import shared_zone
 from . import names as c
 from .clearance import ArmClearance
-from .contacts import contact_frictions
 from .custody import BrickCustody
 from .dispatch import ArmDispatch
 from .handles import SceneHandles
 from .hooks import BuildHooks
 from .ik import DualArmIK
 from .monitor import StepMonitor
+from .readout import measurements
 from .scene import build_scene
 from .spawner import Spawner
 from .stops import stall_reason, warning_reason
 
-SPOT_CLEARANCE = 0.02  # m: no brick or arm link this near the spawn volume when a brick is set
+# m: no brick, and no arm link, this near the spawn volume when a brick is set on the spot
+SPOT_CLEARANCE, SPOT_ARM_CLEARANCE = 0.02, 0.10
 
 
 class BuildLoop:
@@ -46,7 +47,7 @@ class BuildLoop:
             plan.spawn, [b.target.pose for b in plan.bricks], config.brick.length / 2, 0.04
         )
         self.spawner = Spawner(
-            m, h, plan.spawn, clearance=SPOT_CLEARANCE,
+            m, h, plan.spawn, clearance=SPOT_CLEARANCE, arm_clearance=SPOT_ARM_CLEARANCE,
             jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
         )
         self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
@@ -202,38 +203,4 @@ class BuildLoop:
                 break
         self.monitor.flush()
         self.custody.finish()
-        return self._measurements(failure, time.perf_counter() - start)
-
-    def _measurements(self, failure: str | None, wall: float) -> Measurements:
-        d, custody = self.data, self.custody
-        qadr = self.handles.brick_qpos
-        n = len(qadr)
-        warnings = {
-            mujoco.mjtWarning(i).name: int(d.warning[i].number)
-            for i in range(len(d.warning))
-            if d.warning[i].number
-        }
-        return Measurements(
-            plan=self.plan,
-            slot_of=dict(custody.slot_of),
-            final_pos=np.array([d.qpos[q : q + 3] for q in qadr]).reshape(n, 3),
-            final_quat=np.array([d.qpos[q + 3 : q + 7] for q in qadr]).reshape(n, 4),
-            slip_mm=dict(custody.slip_mm),
-            drops=tuple(custody.drops),
-            knocks=tuple(custody.knocks),
-            sim_time=float(d.time),
-            wall_time=wall,
-            arm_arm_contacts=self.monitor.arm_arm_contacts,
-            zone_violations=self.zone_violations,
-            finger_limit_mm=self.monitor.finger_excess * 1000.0,
-            joint_speed_ratio=self.monitor.speed_ratio,
-            joint_torque_ratio=self.monitor.torque_ratio,
-            warnings=warnings,
-            failure=failure,
-            torque_joint=self.monitor.torque_joint,
-            idle_motion_mm=custody.idle_motion * 1000.0,
-            contact_friction=contact_frictions(self.model, self.handles),
-            closest_arm_m=self.clearance.closest,
-            closest_arm_time=self.clearance.closest_time,
-            physics_steps=self.steps,
-        )
+        return measurements(self, failure, time.perf_counter() - start)

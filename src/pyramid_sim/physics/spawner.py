@@ -28,10 +28,12 @@ class Spawner:
         handles: SceneHandles,
         spawn: Pose,
         clearance: float,
+        arm_clearance: float,
         jitter: float = 0.0,
         seed: int = 0,
     ) -> None:
-        self.model, self.spawn, self.clearance = model, spawn, clearance
+        self.model, self.spawn = model, spawn
+        self.clearance, self.arm_clearance = clearance, arm_clearance
         self.volume = model.geom(c.SPAWN_VOLUME).id
         self.arm_geoms = [g for a in c.ARMS for g in arm_geoms(model, a)]
         self._fromto = np.zeros(6)
@@ -55,17 +57,22 @@ class Spawner:
             self.current = None
 
     def spot_clear(self, data: mujoco.MjData) -> bool:
-        """Whether nothing is within `clearance` of the spawn volume (the brick's box at the
-        spot, grown by the jitter): no brick set out so far, no link of either arm. Exact
-        shapes (mj_geomDistance) behind a bounding-sphere filter."""
+        """Whether no brick set out so far is within `clearance` of the spawn volume (the
+        brick's box at the spot, grown by the jitter), and no link of either arm within
+        `arm_clearance` (a feeder does not push a brick under a moving hand). Exact shapes
+        (mj_geomDistance) behind a bounding-sphere filter."""
+        bricks = [self.model.body_geomadr[b] for b in self.body[: self.next_slot]]
+        return self._apart(data, bricks, self.clearance) and self._apart(
+            data, self.arm_geoms, self.arm_clearance
+        )
+
+    def _apart(self, data: mujoco.MjData, geoms: list, clearance: float) -> bool:
         m, vol = self.model, self.volume
-        geoms = [*self.arm_geoms, *(m.body_geomadr[b] for b in self.body[: self.next_slot])]
-        centre, reach = data.geom_xpos[vol], m.geom_rbound[vol] + self.clearance
+        centre, reach = data.geom_xpos[vol], m.geom_rbound[vol] + clearance
         for g in geoms:
             if np.linalg.norm(data.geom_xpos[g] - centre) - m.geom_rbound[g] > reach:
                 continue
-            gap = mujoco.mj_geomDistance(m, data, vol, int(g), self.clearance, self._fromto)
-            if gap < self.clearance:
+            if mujoco.mj_geomDistance(m, data, vol, int(g), clearance, self._fromto) < clearance:
                 return False
         return True
 

@@ -1,0 +1,64 @@
+"""What a new user trips on, smoothed: --version, view without a display, a sweep that
+measured nothing, plans that build would refuse, and the scene written for inspection."""
+
+import subprocess
+import sys
+
+import pytest
+
+import pyramid_sim
+from pyramid_sim.cli import main
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as done:
+        main(["--version"])
+    assert done.value.code == 0
+    assert capsys.readouterr().out.strip() == f"pyramid-sim {pyramid_sim.__version__}"
+
+
+def test_view_without_a_display_is_one_line_and_leaves_no_log(tmp_path, monkeypatch, refused):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert "no display" in refused(["view", "--layers", "1"])
+    assert list(tmp_path.iterdir()) == []  # no MUJOCO_LOG.TXT
+
+
+def test_a_scene_path_must_be_mjb_or_xml(tmp_path, refused):
+    assert ".mjb or .xml" in refused(["scene", "--out", str(tmp_path / "scene.txt")])
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.physics
+def test_plan_refuses_what_build_would(capsys, refused):
+    assert "largest reachable is layers 5" in refused(["plan", "--layers", "12"])
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize("suffix", [".mjb", ".xml"])
+def test_the_scene_a_build_runs_is_written_for_inspection(tmp_path, capsys, suffix):
+    import mujoco
+
+    out = tmp_path / f"scene{suffix}"
+    assert main(["scene", "--structure", "pyramid", "--layers", "2", "--friction", "0.4",
+                 "--grip-force", "12", "--out", str(out)]) == 0
+    model = (mujoco.MjModel.from_binary_path if suffix == ".mjb" else mujoco.MjModel.from_xml_path)(
+        str(out))
+    assert model.geom("brick05/geom").friction[0] == pytest.approx(0.4)  # 3 bricks + 3 spares
+    assert model.geom("table_top").friction[0] == pytest.approx(0.4)
+    assert model.actuator("left/gripper").forcerange[1] == pytest.approx(12.0)
+    assert str(out) in capsys.readouterr().out
+
+
+@pytest.mark.physics
+def test_a_sweep_whose_every_run_timed_out_fails(tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--structure", "pyramid", "--layers",
+         "1", "--friction", "1", "--timeout", "0.5", "--workers", "1", "--quiet", "--out",
+         str(tmp_path / "s")], capture_output=True, text=True, timeout=300,
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert "sweep incomplete: 1 of 1 runs crashed or timed out" in proc.stderr
+    rows = (tmp_path / "s" / "sweep.csv").read_text().splitlines()
+    assert len(rows) == 2 and "timeout" in rows[1]
