@@ -140,6 +140,7 @@ def _brick_manager_spec(name: str) -> StructureSpec:
         ("towers", "both"), ("towers", "right"),
         ("list", "both"), ("list", "left"),
         ("pyramid", "left"), ("pyramid-even", "left"),
+        ("corner-wall", "both"), ("corner-wall", "left"),
     ],
 )
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):

@@ -9,6 +9,7 @@ from typing import Callable
 from ..config import BrickConfig
 from ..errors import ConfigError
 from .brick_manager import MAX_BRICKS, MAX_COURSE, towers, wall, wall_pyramid
+from .corner_wall import corner_wall
 from .seed_pyramids import MAX_LAYERS, SEED_START, BrickTarget, pyramid, pyramid_even
 
 __all__ = ["MAX_BRICKS", "MAX_COURSE", "MAX_LAYERS", "SIZE_KNOB", "SIZE_OPTIONS", "STRUCTURES",
@@ -23,13 +24,16 @@ STRUCTURES: dict[str, tuple[Callable[..., tuple[BrickTarget, ...]] | None, dict[
     "wall": (wall, {"bricks": 13, "width": 4}),  # the seed's 15 x 5: both arms only
     "wall-pyramid": (wall_pyramid, {"width": 5, "layers": 3}),
     "towers": (towers, {"towers": 4, "layers": 3}),
+    "corner-wall": (corner_wall, {"bricks": 15, "width": 5}),  # the upstream loop's, the seed's size
     "list": (None, {}),
 }
 SIZE_OPTIONS = ("layers", "bricks", "width", "towers")
+# Structures laid out from the pick-up spot's y whichever arm builds them.
+PLACED_BY_PICKUP = ("towers", "corner-wall")
 # The option `reach` grows to find the largest buildable size.
 SIZE_KNOB = {
     "pyramid": "layers", "pyramid-even": "layers", "wall": "width", "wall-pyramid": "width",
-    "towers": "towers",
+    "towers": "towers", "corner-wall": "width",
 }
 
 
@@ -97,6 +101,6 @@ class StructureSpec:
             assert self.goals is not None
             return self.goals
         options: dict = {o: getattr(self, o) for o in defaults}
-        if self.name == "towers":
+        if self.name in PLACED_BY_PICKUP:
             options["pickup_y"] = start[1] if pickup_y is None else pickup_y
         return generator(**options, brick=brick, start=start)

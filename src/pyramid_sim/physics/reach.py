@@ -94,6 +94,8 @@ def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
         return replace(spec, width=value, bricks=3 * value + 1)
     if spec.name == "wall-pyramid":
         return replace(spec, width=value, layers=min(spec.layers or 1, value))
+    if spec.name == "corner-wall":  # two and a half courses, as the seed's 15 bricks of 6
+        return replace(spec, width=value, bricks=3 * (value + 1) - (value + 1) // 2)
     return replace(spec, **{knob: value})
 
 
@@ -103,6 +105,8 @@ def held_fixed(spec: StructureSpec) -> str:
         return "3 courses"
     if spec.name == "wall-pyramid":
         return f"layers=min({spec.layers}, width)"
+    if spec.name == "corner-wall":
+        return "2.5 courses"
     knob = SIZE_KNOB[spec.name]
     return " ".join(f"{k}={v}" for k, v in spec.size.items() if k != knob) or "-"
 
