@@ -8,6 +8,7 @@ from pyramid_sim.cli import main
 from pyramid_sim.resources import GOALS
 
 
+@pytest.mark.physics  # plan checks reach by IK
 def test_plan_prints_the_build_order(capsys):
     assert main(["plan", "--structure", "pyramid", "--layers", "4"]) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -88,6 +89,7 @@ def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, refused, args, 
     assert not out.exists()
 
 
+@pytest.mark.physics
 def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
     for args in (["--structure", "wall"], ["--structure", "towers", "--arms", "right"],
                  ["--structure", "list", "--goals", str(SEED_FIVE)]):

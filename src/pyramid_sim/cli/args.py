@@ -14,7 +14,13 @@ from typing import Callable, NoReturn, Sequence
 
 from ..config import SimConfig, VideoConfig
 from ..core.plan import ARM_CHOICES
-from ..core.structures import MAX_BRICKS, MAX_COURSE, MAX_LAYERS, STRUCTURES, StructureSpec
+from ..core.structures import (
+    MAX_BRICKS,
+    MAX_COURSE,
+    MAX_LAYERS,
+    STRUCTURES,
+    StructureSpec,
+)
 from ..params import PARAMS
 from ..sweep.grid import SweepConfig, parse_axis
 

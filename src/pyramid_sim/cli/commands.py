@@ -24,10 +24,11 @@ from .args import (
 def cmd_plan(args: argparse.Namespace) -> int:
     """The plan as JSON, its every pose checked by IK first: a plan `build` would refuse is
     refused here too."""
+    config = config_from_args(args)
+    spec = spec_from_args(args, config)
     from ..physics.build import prepare
 
-    config = config_from_args(args)
-    plan = prepare(spec_from_args(args, config), config, args.arms)
+    plan = prepare(spec, config, args.arms)
     print(json.dumps(plan.to_json(), indent=2))
     return 0
 
