@@ -7,7 +7,7 @@ naming the field and its accepted range (ConfigError).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from .errors import ConfigError
 from .params import check_range, check_section, default
@@ -50,15 +50,12 @@ class GripperConfig:
 
     force: float = default("gripper", "force")  # N, squeeze of each pad on the brick
     pad_friction: float = default("gripper", "pad_friction")
-    open_margin: float = 0.002  # m short of the end of travel the open fingers stop: a knock
-    # while open then pushes a finger against its servo, not into its joint stop
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
     settle_time: float = 0.15  # s after the ramp, for the force to build
     stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:
         check_section("gripper", self)
-        check_range("finger open margin", self.open_margin, 0.0, 0.01)
         check_range("gripper close time", self.close_time, 0.02, 2.0)
         check_range("gripper settle time", self.settle_time, 0.0, 2.0)
         check_range("gripper stiffness", self.stiffness, 100.0, 1e5)
@@ -128,7 +125,15 @@ class SimConfig:
     slip_limit_mm: float = 5.0  # a brick that slid further in the hand fails the build
 
     def __post_init__(self) -> None:
-        robot(self.robot)  # refuses an unknown preset, naming those there are
+        preset = robot(self.robot)  # refuses an unknown preset, naming those there are
+        m = self.motion
+        capped = replace(
+            m, speed=min(m.speed, preset.max_speed),
+            slow_speed=min(m.slow_speed, preset.max_slow_speed),
+            turn_rate=min(m.turn_rate, preset.max_turn_rate),
+        )
+        if capped != m:  # the robot's own limits on how fast its hand is moved
+            object.__setattr__(self, "motion", capped)
         check_range("timestep", self.timestep, 0.0005, 0.004)
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)

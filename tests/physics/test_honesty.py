@@ -150,7 +150,7 @@ def test_the_fingers_keep_the_real_hands_travel_and_grip_inside_it():
     result = judge(loop.run(BuildHooks(on_step=watch)), loop.config)
     assert result.success and result.finger_limit_excess_mm <= 0.1
     assert gripping and 0.0 < min(gripping) and max(gripping) < upper - 0.005  # well inside
-    assert fingers and PANDA.closed_width + PANDA.open_gap(0.002) > SimConfig().brick.width
+    assert fingers and PANDA.closed_width + PANDA.open_gap() > SimConfig().brick.width
 
 
 def test_a_finger_pushed_past_its_range_fails_the_build():

@@ -40,7 +40,7 @@ class ArmRunner:
 
     @property
     def open_gap(self) -> float:
-        return self.config.robot_spec.open_gap(self.config.gripper.open_margin)
+        return self.config.robot_spec.open_gap()
 
     @property
     def squeeze_gap(self) -> float:

@@ -87,7 +87,7 @@ def place_steps(
 def clear_pose(arm: str, robot: RobotDescription) -> Pose:
     """The arm's outer collision-clear pose, out to its own side."""
     x, y, z = robot.clear_pose
-    return Pose(x, y if arm == "left" else -y, z, 0.0)
+    return Pose(x, y if arm == "left" else -y, z, robot.arms[arm].yaw_reference)
 
 
 def clear_steps(arm: str, motion: MotionConfig, robot: RobotDescription) -> list[Step]:

@@ -24,7 +24,7 @@ class ArmDispatch:
         self.plan, self.config, self.spawner = plan, config, spawner
         self.robot = config.robot_spec
         self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
-        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap(config.gripper.open_margin)) for a in c.ARMS}
+        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap()) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
         self._settle_until: float | None = None
@@ -69,17 +69,15 @@ class ArmDispatch:
         """Give an idle arm the steps of its task in the current phase."""
         task = self.scheduler.task(arm)
         motion = self.config.motion
+        grasp = {"grasp_height": self.robot.grasp_height,
+                 "yaw_ref": self.robot.arms[arm].yaw_reference}
         if task.action in (Action.PICK, Action.PLACE):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
             if task.action is Action.PICK:
-                self.runners[arm].load(pick_steps(
-                    self.plan.spawn, motion, carry_to=target, grasp_height=self.robot.grasp_height
-                ))
+                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target, **grasp))
             else:
-                self.runners[arm].load(
-                    place_steps(target, motion, grasp_height=self.robot.grasp_height)
-                )
+                self.runners[arm].load(place_steps(target, motion, **grasp))
         elif task.action is Action.CLEAR:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))
         self.task_of[arm] = task

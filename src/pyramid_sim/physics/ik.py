@@ -64,7 +64,7 @@ class DualArmIK:
     def __init__(
         self,
         config: SimConfig,
-        posture_cost: float = 1e-2,
+        posture_cost: float | None = None,
         damping: float = 1e-2,
         limit_acceleration: bool = True,
     ) -> None:
@@ -87,7 +87,8 @@ class DualArmIK:
             for arm in c.ARMS
         }
         # The same gain, so frame and posture tasks balance where they did at gain 1.
-        self.posture = mink.PostureTask(self.model, cost=posture_cost, gain=FRAME_GAIN)
+        cost = robot.posture_cost if posture_cost is None else posture_cost
+        self.posture = mink.PostureTask(self.model, cost=cost, gain=FRAME_GAIN)
         # A margin under the real limits: the servos overshoot the IK's velocity a little.
         velocities = {
             j: VELOCITY_MARGIN * v
@@ -214,7 +215,7 @@ class DualArmIK:
         err = self.tasks[arm].compute_error(self.configuration)
         return float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:]))
 
-    def solve(self, arm: str, pose: Pose, max_steps: int = 400, tol: float = 1e-3) -> np.ndarray:
+    def solve(self, arm: str, pose: Pose, max_steps: int = 1500, tol: float = 1e-3) -> np.ndarray:
         """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""
         self.set_target(arm, pose)
         pos_err = float("inf")

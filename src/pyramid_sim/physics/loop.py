@@ -78,7 +78,7 @@ class BuildLoop:
         for a in c.ARMS:
             d.qpos[h.arm_qpos[a]] = start[a]
             d.ctrl[h.arm_actuators[a]] = start[a]
-            opened = robot.open_gap(self.config.gripper.open_margin)
+            opened = robot.open_gap()
             d.ctrl[h.gripper[a]] = opened
             for q, sign in zip(h.finger_qpos[a], robot.finger_signs):
                 d.qpos[q] = sign * opened / 2

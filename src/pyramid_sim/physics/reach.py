@@ -17,7 +17,7 @@ from .ik import DualArmIK
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
     """(arm, what, pose) of every move a build of `plan` makes."""
-    motion, grasp = config.motion, config.robot_spec.grasp_height
+    motion, robot = config.motion, config.robot_spec
     poses = []
     for arm in c.ARMS:
         poses.append((arm, "clear pose", clear_pose(arm, config.robot_spec)))
@@ -26,10 +26,11 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
         label = f"brick {b.index}"
         if goals:
             label += f" (goals row {goals.index(b.target) + 1})"
-        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, grasp_height=grasp):
+        grasp = {"grasp_height": robot.grasp_height, "yaw_ref": robot.arms[b.arm].yaw_reference}
+        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, **grasp):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} pick {step.name}", step.pose))
-        for step in place_steps(b.target.pose, motion, grasp_height=grasp):
+        for step in place_steps(b.target.pose, motion, **grasp):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} {step.name}", step.pose))
     return poses

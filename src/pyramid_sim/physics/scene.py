@@ -24,6 +24,7 @@ PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behin
 # Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows
 # closer than a brick's length interpenetrate, and MuJoCo throws the bricks across the floor).
 PARK_ROW_PITCH, PARK_COLUMN_PITCH = 0.30, 0.20
+PARK_X = -1.1  # m, the first row: behind any robot's pedestal
 
 
 def brick_spec(config: SimConfig) -> mujoco.MjSpec:
@@ -40,7 +41,7 @@ def brick_spec(config: SimConfig) -> mujoco.MjSpec:
 def park_position(slot: int) -> np.ndarray:
     """Where magazine brick `slot` waits: a grid on the floor behind the robots."""
     row, col = divmod(slot, 8)
-    return np.array([-0.55 - PARK_ROW_PITCH * row, -0.7 + PARK_COLUMN_PITCH * col, PARK_Z])
+    return np.array([PARK_X - PARK_ROW_PITCH * row, -0.7 + PARK_COLUMN_PITCH * col, PARK_Z])
 
 
 @dataclass(frozen=True)

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from ..errors import ConfigError
 from .description import ArmDescription, RobotDescription
+from .baxter import BAXTER
 from .panda import PANDA
 
-PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA}
+PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}
 
 
 def robot(name: str) -> RobotDescription:

@@ -35,6 +35,8 @@ class ArmDescription:
     finger_bodies: tuple[str, str]
     pads: tuple[str, str]  # the geoms that touch the brick
     gripper_actuator: str
+    yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
+    # and the clear pose this yaw, so the last wrist joint stays inside its range
 
     def __post_init__(self) -> None:
         n = len(self.joints)
@@ -54,19 +56,24 @@ class RobotDescription:
     finger_stroke: float  # m each finger travels: the real hand's joint range
     finger_signs: tuple[int, int]  # +1 where a finger's joint opens the hand with rising value
     closed_width: float  # m between the pads with both fingers closed (spacers or slots set it)
+    open_margin: float  # m short of its end each open finger stops: a knock then pushes it
+    # against its servo, not into its joint stop
     grasp_height: float  # m above a brick's centre the tool point grips it
     clear_pose: Vec3  # x, |y| and z of each arm's outer collision-clear pose, out to its side
     static_bodies: tuple[str, ...]  # the robot's own body (torso, head): kept off by the IK
+    posture_cost: float = 1e-2  # of the IK's pull towards home: too high and it stalls short
+    max_speed: float = float("inf")  # m/s: caps the motion settings' free-move speed,
+    max_slow_speed: float = float("inf")  # their servo speed near bricks,
+    max_turn_rate: float = float("inf")  # and the hand's turn rate (rad/s)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "arms", MappingProxyType(dict(self.arms)))
         if set(self.arms) != {"left", "right"}:
             raise ValueError(f"arms: {sorted(self.arms)}; a preset has a left and a right arm")
 
-    def open_gap(self, margin: float) -> float:
-        """The finger-gap command (both fingers' joint travel, m) that opens the hand, each
-        finger `margin` short of the end of its travel."""
-        return 2 * (self.finger_stroke - margin)
+    def open_gap(self) -> float:
+        """The finger-gap command (both fingers' joint travel, m) that opens the hand."""
+        return 2 * (self.finger_stroke - self.open_margin)
 
     def squeeze_gap(self, brick_width: float, force: float, stiffness: float) -> float:
         """The gap command at which the pads press a brick `brick_width` wide with `force`."""

@@ -48,6 +48,7 @@ PANDA = RobotDescription(
     finger_stroke=0.04,  # the real hand's 0-40 mm a finger
     finger_signs=(1, 1),
     closed_width=0.024,  # each finger on a 12 mm spacer: the stock hand closes to 0
+    open_margin=0.002,
     grasp_height=0.012,  # at the centre the hand's underside is 6 mm above the brick's top
     clear_pose=(0.30, 0.62, 0.40),
     static_bodies=(),

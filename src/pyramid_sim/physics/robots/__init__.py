@@ -8,10 +8,11 @@ import mujoco
 
 from ...config import SimConfig
 from ...robots import RobotDescription
+from .baxter import add_baxter
 from .panda import add_panda_pair
 
 Builder = Callable[[mujoco.MjSpec, SimConfig, RobotDescription], None]
-BUILDERS: dict[str, Builder] = {"panda": add_panda_pair}
+BUILDERS: dict[str, Builder] = {"panda": add_panda_pair, "baxter": add_baxter}
 
 
 def add_robot(spec: mujoco.MjSpec, config: SimConfig) -> RobotDescription:
