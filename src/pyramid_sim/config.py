@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 
 from .errors import ConfigError
 from .params import check_range, check_section, default
-from .robots import RobotDescription, robot
+from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
 
@@ -111,7 +111,7 @@ class MotionConfig:
 class SimConfig:
     """Everything a build needs beyond the structure itself."""
 
-    robot: str = "panda"  # a preset of robots/: the Panda pair, or Baxter
+    robot: str = DEFAULT_ROBOT  # a preset of robots/
     brick: BrickConfig = field(default_factory=BrickConfig)
     gripper: GripperConfig = field(default_factory=GripperConfig)
     layout: LayoutConfig = field(default_factory=LayoutConfig)

@@ -37,7 +37,7 @@ class _BrakingLimit(mink.Limit):
     """mink's collision avoidance limit, reshaped so the arms can always stop in time.
 
     mink bounds each step's approach by a share of the gap left (gain x gap / dt), which allows
-    full speed until just short of the minimum and then an instant stop; the Panda's
+    full speed until just short of the minimum and then an instant stop; the arm's
     acceleration bounds cannot follow (with both hands sent to one point, and the velocity
     clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
     is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
@@ -165,7 +165,7 @@ class DualArmIK:
     def step(self) -> None:
         """One control step: solve for joint velocities and integrate them over dt.
 
-        The change of velocity stays within the Panda's acceleration limits (see `_solve`): a
+        The change of velocity stays within the arm's acceleration limits (see `_solve`): a
         sudden reversal (near the shoulder singularity) would shake the brick loose.
         """
         velocity = self._solve()

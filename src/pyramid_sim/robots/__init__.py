@@ -8,6 +8,7 @@ from .baxter import BAXTER
 from .panda import PANDA
 
 PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}
+DEFAULT_ROBOT = PANDA.name
 
 
 def robot(name: str) -> RobotDescription:
@@ -17,4 +18,4 @@ def robot(name: str) -> RobotDescription:
     return PRESETS[name]
 
 
-__all__ = ["PRESETS", "ArmDescription", "RobotDescription", "robot"]
+__all__ = ["DEFAULT_ROBOT", "PRESETS", "ArmDescription", "RobotDescription", "robot"]
