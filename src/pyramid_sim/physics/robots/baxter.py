@@ -4,7 +4,8 @@ its meshes converted to STL, standing at the world origin (its base frame is the
 What is changed from the URDF, and why:
 - the head is locked (head_pan removed): nothing in a build turns it;
 - the 1 mm placeholder spheres (head, screen, sonar ring) do not collide; the 0.22 m head
-  padding spheres do, and the IK keeps the arms off them, the torso and the pedestal;
+  padding spheres do (not drawn), and the IK keeps the arms off them, the torso and the
+  pedestal;
 - per arm nine body pairs that touch at any posture by construction do not collide (torso with
   the upper shoulder, lower shoulder and upper elbow; upper shoulder with upper elbow; the
   elbow and forearm "visual" links with their neighbours; finger with finger). The SRDF's 398
@@ -55,6 +56,9 @@ def baxter_spec() -> mujoco.MjSpec:
     for geom in spec.geoms:
         if geom.type == mujoco.mjtGeom.mjGEOM_SPHERE and geom.size[0] < 0.002:
             geom.contype = geom.conaffinity = 0
+    for padding in ("collision_head_link_1", "collision_head_link_2"):
+        for geom in spec.body(padding).geoms:
+            geom.group = 3  # drawn, the padding hides the head; group 3 is not drawn
     return spec
 
 
