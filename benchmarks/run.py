@@ -13,10 +13,11 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from pyramid_sim.cli.args import EXIT_USAGE, Parser, whole
+from pyramid_sim.cli.args import EXIT_USAGE, Parser, one_of, whole
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.output.files import check_writable_dir, write_json_atomic
 from pyramid_sim.output.gl_backend import choose_gl_backend
+from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -24,6 +25,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", type=Path, metavar="PATH", help="also write the figures here")
     parser.add_argument("--layers", type=whole("layers", "1 to 5"), default=4,
                         help="pyramid-even size built (default 4: 20 bricks)")
+    parser.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=DEFAULT_ROBOT,
+                        help=f"a robot preset: {', '.join(PRESETS)} (default {DEFAULT_ROBOT})")
     parser.add_argument("--frames", type=whole("frames", "1 to 10000"), default=60,
                         help="frames rendered per setting (default 60)")
     parser.add_argument("--sweep-builds", type=whole("sweep builds", "1 to 100"), default=2,
@@ -36,7 +39,7 @@ def main(argv: list[str] | None = None) -> int:
         from pyramid_sim.benchmark import BenchConfig, run_all, table
 
         bench = BenchConfig(
-            layers=args.layers, frames=args.frames, sweep_builds=args.sweep_builds,
+            layers=args.layers, robot=args.robot, frames=args.frames, sweep_builds=args.sweep_builds,
             sweep_rounds=args.sweep_rounds,
         )
         if args.json is not None:

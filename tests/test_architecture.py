@@ -69,3 +69,24 @@ def test_the_public_api_resolves_and_has_a_version():
     for name in pyramid_sim.__all__:
         assert getattr(pyramid_sim, name) is not None, name
     assert pyramid_sim.__version__ and pyramid_sim.__version__[0].isdigit()
+
+
+def test_no_panda_name_is_spelled_outside_the_panda_preset():
+    """Only the preset (robots/panda.py, physics/robots/panda.py) and the registries that list
+    it name the Panda; everything else reads the robot's description."""
+    allowed = {"robots/panda.py", "physics/robots/panda.py", "robots/__init__.py",
+               "physics/robots/__init__.py", "robots/baxter.py"}  # the last compares itself
+    spelled = []
+    for path in SRC.rglob("*.py"):
+        rel = path.relative_to(SRC).as_posix()
+        if rel in allowed:
+            continue
+        tree = ast.parse(path.read_text())
+        docstrings = {id(n.body[0].value) for n in ast.walk(tree)
+                      if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef)) and n.body
+                      and isinstance(n.body[0], ast.Expr)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
+                if "panda" in node.value.lower() and id(node) not in docstrings:
+                    spelled.append(f"{rel}: {node.value[:40]!r}")
+    assert spelled == []

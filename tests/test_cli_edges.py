@@ -62,3 +62,8 @@ def test_a_sweep_whose_every_run_timed_out_fails(tmp_path):
     assert "sweep incomplete: 1 of 1 runs crashed or timed out" in proc.stderr
     rows = (tmp_path / "s" / "sweep.csv").read_text().splitlines()
     assert len(rows) == 2 and "timeout" in rows[1]
+
+
+def test_an_unknown_robot_is_one_line_listing_the_presets(refused):
+    err = refused(["build", "--robot", "kuka"])
+    assert "robot: unknown 'kuka'; accepted panda, baxter" in err

@@ -20,7 +20,7 @@ def _measured(**changes) -> Measurements:
     good = Measurements(
         plan=plan, slot_of={0: 0}, final_pos=np.array([target.position]),
         final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]), slip_mm={0: 1.0}, drops=(), knocks=(),
-        sim_time=12.0, wall_time=1.0, arm_arm_contacts=0, zone_violations=0,
+        sim_time=12.0, wall_time=1.0, arm_arm_contacts=0, arm_body_contacts=0, zone_violations=0,
         finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
         warnings={}, failure=None, idle_motion_mm=0.0,
         contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
@@ -42,6 +42,7 @@ def test_a_clean_build_passes_every_check():
         ({"final_pos": np.array([[0.0, 0.0, 0.0]])}, "bricks_in_place", "1 of 1 bricks not in place"),
         ({"slip_mm": {0: 5.5}}, "slip", "slid 5.5 mm in the hand, over the 5 mm limit"),
         ({"arm_arm_contacts": 2}, "arm_arm_contacts", "2 arm-arm contacts"),
+        ({"arm_body_contacts": 1}, "arm_body_contacts", "1 contacts of an arm with the robot's"),
         ({"zone_violations": 4}, "shared_zone", "both arms in the shared zone"),
         ({"joint_speed_ratio": 1.02}, "joint_speed", "1.02 of its velocity limit"),
         ({"joint_torque_ratio": 1.19}, "joint_torque", "arm joint 3 demanded 1.19"),

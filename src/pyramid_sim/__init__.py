@@ -5,7 +5,14 @@ brings in the physics when it is called.
 """
 
 from .api import build, plan, settings, structure
-from .config import BrickConfig, GripperConfig, LayoutConfig, MotionConfig, SimConfig, VideoConfig
+from .config import (
+    BrickConfig,
+    GripperConfig,
+    LayoutConfig,
+    MotionConfig,
+    SimConfig,
+    VideoConfig,
+)
 from .core.assignment import Assignment, arrange
 from .core.brick_manager import towers, wall, wall_pyramid
 from .core.plan import Plan, make_plan

@@ -22,7 +22,7 @@ from .errors import ConfigError
 from .output.result import BuildResult
 from .params import BY_NAME
 
-RUN_SETTINGS = ("spawn_jitter_mm", "seed")
+RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot")
 
 
 def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
@@ -34,8 +34,8 @@ def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
             config = BY_NAME[name].apply(config, value)
         elif name == "spawn_jitter_mm":
             config = replace(config, layout=replace(config.layout, spawn_jitter_mm=value))
-        elif name == "seed":
-            config = replace(config, seed=value)
+        elif name in ("seed", "robot"):
+            config = replace(config, **{name: value})
         else:
             accepted = ", ".join([*BY_NAME, *RUN_SETTINGS, "config"])
             raise ConfigError(f"setting: unknown {name!r}; accepted {accepted}")

@@ -17,6 +17,7 @@ import mujoco
 import numpy as np
 
 from .config import SimConfig, VideoConfig, check_count
+from .robots import DEFAULT_ROBOT
 from .core.structures import StructureSpec
 from .output.judge import judge
 from .physics.build import prepare
@@ -33,6 +34,7 @@ class BenchConfig:
     """What to measure: the `pyramid-even` size, frames rendered per setting, builds per worker."""
 
     layers: int = 4
+    robot: str = DEFAULT_ROBOT
     frames: int = 60
     sweep_builds: int = 2  # per worker
     sweep_rounds: int = 2  # 1-worker and 2-worker sweeps, alternated; the best of each counts
@@ -40,6 +42,7 @@ class BenchConfig:
 
     def __post_init__(self) -> None:
         check_count("layers", self.layers, 1, 5)
+        SimConfig(robot=self.robot)  # an unknown robot: one line naming the presets
         check_count("frames", self.frames, 1, 10_000)
         check_count("sweep builds", self.sweep_builds, 1, 100)
         check_count("sweep rounds", self.sweep_rounds, 1, 10)
@@ -194,10 +197,12 @@ def video_figures(loop: BuildLoop, frames: int) -> dict[str, float]:
     return figures
 
 
-def sweep_rate(spec: StructureSpec, workers: int, builds: int) -> tuple[float, int]:
+def sweep_rate(
+    spec: StructureSpec, workers: int, builds: int, robot: str = DEFAULT_ROBOT
+) -> tuple[float, int]:
     """Builds per hour of wall time running `builds` builds on `workers` worker processes, as
     `pyramid-sim sweep` does (process start and model compile included); and how many succeeded."""
-    runs = [RunSpec(spec, "both", (), seed, 0.0) for seed in range(builds)]
+    runs = [RunSpec(spec, "both", (), seed, 0.0, robot) for seed in range(builds)]
     results: list[RunResult] = []
     start = time.perf_counter()
     run_processes(runs, workers, timeout=3600.0, on_result=results.append)
@@ -207,9 +212,11 @@ def sweep_rate(spec: StructureSpec, workers: int, builds: int) -> tuple[float, i
 
 def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str, Any]:
     """Every figure of the benchmark, in one process."""
-    config = SimConfig()
+    config = SimConfig(robot=bench.robot)
     spec = bench.structure
-    figures: dict[str, Any] = {"structure": f"pyramid-even layers={bench.layers}"}
+    figures: dict[str, Any] = {
+        "structure": f"pyramid-even layers={bench.layers}", "robot": bench.robot,
+    }
     progress("bare physics")
     figures["bare_steps_per_s"] = bare_rate(config, spec, bench.bare_seconds)
     progress("headless build")
@@ -227,7 +234,7 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     for round_ in range(1, bench.sweep_rounds + 1):
         for workers in (1, 2):
             progress(f"sweep round {round_}, {workers} worker{'s' if workers > 1 else ''}")
-            rate, ok = sweep_rate(spec, workers, workers * bench.sweep_builds)
+            rate, ok = sweep_rate(spec, workers, workers * bench.sweep_builds, bench.robot)
             key = f"sweep_builds_per_hour_{workers}"
             figures[key] = max(figures[key], rate)
             figures[f"sweep_successes_{workers}"] += ok

@@ -7,10 +7,11 @@ naming the field and its accepted range (ConfigError).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from .errors import ConfigError
 from .params import check_range, check_section, default
+from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
 
@@ -44,54 +45,31 @@ class BrickConfig:
 
 @dataclass(frozen=True)
 class GripperConfig:
-    """Squeeze force, pad friction, and the fingers' travel and spacers.
-
-    The Panda's fingers travel 0-40 mm each (an 80 mm gap); the brick is 86 mm wide. As the
-    seeds did in hardware (the Brick Manager's wider fingers, DE NIRO's wider finger slots),
-    each finger is mounted `spacer` further out, so the joints keep the real hand's range and
-    grip the brick inside it.
-    """
+    """Squeeze force, pad friction and how the fingers move (their travel and width are the
+    robot's: `robots/`)."""
 
     force: float = default("gripper", "force")  # N, squeeze of each pad on the brick
     pad_friction: float = default("gripper", "pad_friction")
-    stroke: float = 0.04  # m per finger: the real hand's joint range (the URDF's)
-    spacer: float = 0.012  # m each finger is mounted further out than the stock hand
-    open_margin: float = 0.002  # m short of the end of travel the open fingers stop: a knock
-    # while open then pushes a finger against its servo, not into its joint stop
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
     settle_time: float = 0.15  # s after the ramp, for the force to build
     stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:
         check_section("gripper", self)
-        check_range("finger stroke", self.stroke, 0.0, 0.04, low_open=True)
-        check_range("finger spacer", self.spacer, 0.0, 0.03)
-        check_range("finger open margin", self.open_margin, 0.0, self.stroke / 2)
         check_range("gripper close time", self.close_time, 0.02, 2.0)
         check_range("gripper settle time", self.settle_time, 0.0, 2.0)
         check_range("gripper stiffness", self.stiffness, 100.0, 1e5)
 
-    @property
-    def open_gap(self) -> float:
-        """The finger-gap command (joint travel of both fingers, m) that opens the hand."""
-        return 2 * (self.stroke - self.open_margin)
-
-    @property
-    def open_width(self) -> float:
-        """The pads' gap with the hand open (m)."""
-        return self.open_gap + 2 * self.spacer
-
 
 @dataclass(frozen=True)
 class LayoutConfig:
-    """Where things stand: the robots' bases, the table and the spawn spot.
+    """Where things stand: the table and the spawn spot (the robot's bases are its preset's).
 
-    The world frame is the seed's robot frame: x forward, y to the left, z up, with the bases at
-    z = 0 and the table top at 0.079 m so the seed's brick centre height 0.11 m rests on it.
+    The world frame is the seed's robot frame: x forward, y to the left, z up, with the robot's
+    base at z = 0 and the table top at 0.079 m so the seed's brick centre height 0.11 m rests
+    on it.
     """
 
-    left_base: Vec3 = (0.15, 0.25, 0.0)
-    right_base: Vec3 = (0.15, -0.25, 0.0)
     table_top_z: float = 0.079
     spawn_xy: tuple[float, float] = (0.49, 0.01)
     spawn_yaw: float = math.pi / 2  # the seed turns the spawned brick 90 degrees
@@ -116,9 +94,6 @@ class MotionConfig:
     control_dt: float = 0.01  # s, IK rate (100 Hz)
     settle_before_release: float = 0.15  # s held still at the release pose
     position_tolerance: float = 0.002  # m, IK target reached
-    clear_height: float = 0.40  # m, z of the outer collision-clear pose
-    clear_y: float = 0.62  # m, |y| of the outer collision-clear pose
-    clear_x: float = 0.30  # m, x of the outer collision-clear pose
     arm_min_distance: float = 0.05  # m the IK keeps between the arms' links (beyond the lockstep)
 
     def __post_init__(self) -> None:
@@ -136,6 +111,7 @@ class MotionConfig:
 class SimConfig:
     """Everything a build needs beyond the structure itself."""
 
+    robot: str = DEFAULT_ROBOT  # a preset of robots/
     brick: BrickConfig = field(default_factory=BrickConfig)
     gripper: GripperConfig = field(default_factory=GripperConfig)
     layout: LayoutConfig = field(default_factory=LayoutConfig)
@@ -149,6 +125,15 @@ class SimConfig:
     slip_limit_mm: float = 5.0  # a brick that slid further in the hand fails the build
 
     def __post_init__(self) -> None:
+        preset = robot(self.robot)  # refuses an unknown preset, naming those there are
+        m = self.motion
+        capped = replace(
+            m, speed=min(m.speed, preset.max_speed),
+            slow_speed=min(m.slow_speed, preset.max_slow_speed),
+            turn_rate=min(m.turn_rate, preset.max_turn_rate),
+        )
+        if capped != m:  # the robot's own limits on how fast its hand is moved
+            object.__setattr__(self, "motion", capped)
         check_range("timestep", self.timestep, 0.0005, 0.004)
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
@@ -162,6 +147,11 @@ class SimConfig:
                 f"control dt: {self.motion.control_dt} is not a whole number of timesteps "
                 f"({self.timestep})"
             )
+
+    @property
+    def robot_spec(self) -> RobotDescription:
+        """The description of the robot this build runs (`robots/`)."""
+        return robot(self.robot)
 
     @property
     def substeps(self) -> int:

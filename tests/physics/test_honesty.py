@@ -11,16 +11,18 @@ import numpy as np
 import pytest
 
 import pyramid_sim
-from pyramid_sim.config import GripperConfig, SimConfig
+from pyramid_sim.config import SimConfig
 from pyramid_sim.output.judge import judge
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.build import prepare
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
-from pyramid_sim.physics.monitor import StepMonitor
-from pyramid_sim.physics.scene import build_scene, panda_urdf_dir
+from pyramid_sim.physics.monitor import StepMonitor, joint_limits
+from pyramid_sim.physics.robots.common import robots_dir
+from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner
+from pyramid_sim.robots.panda import PANDA
 
 
 def _loop(config: SimConfig = SimConfig(), layers: int = 1) -> BuildLoop:
@@ -33,7 +35,7 @@ def test_a_magazine_left_alone_does_not_move():
     (rows closer than a brick's length threw them metres across the floor)."""
     model = build_scene(SimConfig(), 23).model
     data = mujoco.MjData(model)
-    handles = SceneHandles(model, 23)
+    handles = SceneHandles(model, PANDA, 23)
     start = np.array([data.qpos[q : q + 3] for q in handles.brick_qpos])
     for _ in range(250):
         mujoco.mj_step(model, data)
@@ -63,25 +65,26 @@ def test_a_parked_brick_knocked_about_fails_the_build(teleport):
 
 def test_gravity_compensation_is_the_servos_and_counts_in_the_torque_measured():
     model = build_scene(SimConfig(), 1).model
-    joint = model.joint(c.prefixed("left", c.ARM_JOINTS[1]))
+    joint = model.joint(PANDA.arms["left"].joints[1])
     assert model.jnt_actgravcomp[joint.id] == 1
     assert list(model.jnt_actfrcrange[joint.id]) == [-87.0, 87.0]
     # Held still with the servo's error zero, the torque measured is gravity's alone.
     data = mujoco.MjData(model)
-    handles = SceneHandles(model, 1)
+    handles = SceneHandles(model, PANDA, 1)
     arms = [handles.arm_qpos[a] for a in c.ARMS]
     for q in arms:
-        data.qpos[q] = c.HOME_QPOS
+        data.qpos[q] = PANDA.arms["left"].home
     data.ctrl[np.concatenate([handles.arm_actuators[a] for a in c.ARMS])] = np.concatenate(
         [data.qpos[q] for q in arms])
     mujoco.mj_forward(model, data)
     dofs = np.concatenate([handles.arm_dofs[a] for a in c.ARMS])
     monitor = StepMonitor(model, data, dofs, np.concatenate(arms),
                           np.concatenate([handles.arm_actuators[a] for a in c.ARMS]),
-                          np.concatenate([handles.finger_qpos[a] for a in c.ARMS]), 0.04)
+                          np.concatenate([handles.finger_qpos[a] for a in c.ARMS]),
+                          joint_limits(model, PANDA))
     monitor.record()
     monitor.flush()
-    expected = np.abs(data.qfrc_gravcomp[dofs]) / np.tile(c.JOINT_TORQUE_LIMITS, 2)
+    expected = np.abs(data.qfrc_gravcomp[dofs]) / np.tile(PANDA.arms["left"].torque_limits, 2)
     assert expected.max() > 0.1
     assert monitor.torque_ratio == pytest.approx(expected.max())
 
@@ -111,7 +114,7 @@ def test_the_swept_friction_is_the_friction_of_every_brick_contact_and_pads_keep
     m = loop.model
     brick_geoms = {int(m.body_geomadr[b]) for b in loop.handles.brick_body}
     table = m.geom(c.TABLE_GEOM).id
-    pads = {m.geom(c.prefixed(a, p)).id for a in c.ARMS for p in c.PAD_GEOMS}
+    pads = {m.geom(p).id for a in c.ARMS for p in PANDA.arms[a].pads}
     seen: dict[str, set[float]] = {"brick_brick": set(), "brick_table": set(), "pad_brick": set()}
 
     def watch(loop, data):
@@ -131,12 +134,12 @@ def test_the_swept_friction_is_the_friction_of_every_brick_contact_and_pads_keep
 
 
 def test_the_fingers_keep_the_real_hands_travel_and_grip_inside_it():
-    urdf = (panda_urdf_dir() / "urdf" / "panda.urdf").read_text()
+    urdf = (robots_dir() / "panda_description" / "urdf" / "panda.urdf").read_text()
     upper = float(re.search(r'name="panda_finger_joint1".*?upper="([0-9.]+)"', urdf, re.S)[1])
     loop = _loop()
     for arm in c.ARMS:
-        for joint in c.FINGER_JOINTS:
-            assert list(loop.model.joint(c.prefixed(arm, joint)).range) == [0.0, upper]
+        for joint in PANDA.arms[arm].finger_joints:
+            assert list(loop.model.joint(joint).range) == [0.0, upper]
     fingers = [q for a in c.ARMS for q in loop.handles.finger_qpos[a]]
     gripping: list[float] = []
 
@@ -147,9 +150,7 @@ def test_the_fingers_keep_the_real_hands_travel_and_grip_inside_it():
     result = judge(loop.run(BuildHooks(on_step=watch)), loop.config)
     assert result.success and result.finger_limit_excess_mm <= 0.1
     assert gripping and 0.0 < min(gripping) and max(gripping) < upper - 0.005  # well inside
-    assert fingers and GripperConfig().open_width > SimConfig().brick.width
-    with pytest.raises(pyramid_sim.ConfigError, match="finger stroke"):
-        GripperConfig(stroke=0.05)  # no wider than the real hand
+    assert fingers and PANDA.closed_width + PANDA.open_gap() > SimConfig().brick.width
 
 
 def test_a_finger_pushed_past_its_range_fails_the_build():
@@ -171,9 +172,9 @@ def test_the_spawn_spot_is_clear_only_of_real_shapes(offset, clear):
     config = SimConfig()
     model = build_scene(config, 2).model
     data = mujoco.MjData(model)
-    handles = SceneHandles(model, 2)
+    handles = SceneHandles(model, PANDA, 2)
     plan = pyramid_sim.plan("pyramid", layers=1)
-    spawner = Spawner(model, handles, plan.spawn, clearance=0.02, arm_clearance=0.1)
+    spawner = Spawner(model, PANDA, handles, plan.spawn, clearance=0.02, arm_clearance=0.1)
     spawner.spawn_next(data)  # brick 0 on the spot...
     yaw = plan.spawn.yaw  # ...then moved along the spawn axis (its long axis)
     position = plan.spawn.position + offset * np.array([np.cos(yaw), np.sin(yaw), 0.0])
@@ -186,9 +187,9 @@ def test_the_spawn_spot_check_sees_every_link_of_both_arms():
     from pyramid_sim.physics.clearance import arm_geoms
 
     model = build_scene(SimConfig(), 1).model
-    spawner = Spawner(model, SceneHandles(model, 1), pyramid_sim.plan().spawn, clearance=0.02,
+    spawner = Spawner(model, PANDA, SceneHandles(model, PANDA, 1), pyramid_sim.plan().spawn, clearance=0.02,
                       arm_clearance=0.1)
     links = {model.geom_bodyid[g] for g in spawner.arm_geoms}
     for arm in c.ARMS:
-        assert set(arm_geoms(model, arm)) <= set(spawner.arm_geoms)
-        assert model.body(c.prefixed(arm, "panda_link4")).id in links
+        assert set(arm_geoms(model, PANDA.arms[arm])) <= set(spawner.arm_geoms)
+        assert model.body(f"{arm}/panda_link4").id in links

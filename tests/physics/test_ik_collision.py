@@ -11,6 +11,7 @@ from pyramid_sim.physics import names as c
 from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.ik import DualArmIK
+from pyramid_sim.robots.panda import PANDA
 
 pytestmark = pytest.mark.physics
 
@@ -19,10 +20,10 @@ def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> f
     config = SimConfig(motion=MotionConfig(arm_min_distance=min_distance))
     ik = DualArmIK(config)
     for arm in c.ARMS:
-        ik.solve(arm, clear_pose(arm, config.motion))
+        ik.solve(arm, clear_pose(arm, PANDA))
     model, data = ik.model, ik.configuration.data
-    pairs = [(a, b) for a in arm_geoms(model, "left", c.IK_GUARDED_BODIES)
-             for b in arm_geoms(model, "right", c.IK_GUARDED_BODIES)]
+    pairs = [(a, b) for a in arm_geoms(model, PANDA.arms["left"], PANDA.arms["left"].guarded_bodies)
+             for b in arm_geoms(model, PANDA.arms["right"], PANDA.arms["right"].guarded_bodies)]
     fromto = np.zeros(6)
     for arm in c.ARMS:
         ik.set_target(arm, Pose(0.5, 0.0, 0.3, 0.0))
@@ -52,12 +53,12 @@ def test_the_closest_approach_is_measured_from_the_physics():
     model = build_scene(SimConfig(), 1).model
     data = mujoco.MjData(model)
     ik = DualArmIK(SimConfig())
-    q = {arm: ik.solve(arm, clear_pose(arm, MotionConfig())) for arm in c.ARMS}
-    handles = SceneHandles(model, 1)
+    q = {arm: ik.solve(arm, clear_pose(arm, PANDA)) for arm in c.ARMS}
+    handles = SceneHandles(model, PANDA, 1)
     for arm in c.ARMS:
         data.qpos[handles.arm_qpos[arm]] = q[arm]
     mujoco.mj_forward(model, data)
-    apart = ArmClearance(model, data)
+    apart = ArmClearance(model, data, PANDA)
     apart.update()
     assert 0.3 < apart.closest < 1.0  # 0.44 m, elbow to fingertips
     reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]

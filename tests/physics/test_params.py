@@ -7,14 +7,15 @@ from pyramid_sim.config import SimConfig
 from pyramid_sim.params import PARAMS
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.scene import build_scene
+from pyramid_sim.robots.panda import PANDA
 
 # How each parameter is read back from a compiled model: adding a row to the table without a
 # reader here fails test_every_parameter_has_a_reader.
 READERS = {
     "friction": lambda m: m.geom(c.brick_name(0) + "geom").friction[0],
     "brick_mass": lambda m: m.body(c.brick_name(0) + "brick").mass[0],
-    "grip_force": lambda m: m.actuator(c.prefixed("left", c.GRIPPER_ACTUATOR)).forcerange[1],
-    "pad_friction": lambda m: m.geom(c.prefixed("right", c.PAD_GEOMS[0])).friction[0],
+    "grip_force": lambda m: m.actuator(PANDA.arms["left"].gripper_actuator).forcerange[1],
+    "pad_friction": lambda m: m.geom(PANDA.arms["right"].pads[0]).friction[0],
 }
 
 

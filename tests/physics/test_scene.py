@@ -8,6 +8,7 @@ from pyramid_sim.config import BrickConfig, SimConfig
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
+from pyramid_sim.robots.panda import PANDA
 
 pytestmark = pytest.mark.physics
 
@@ -15,9 +16,9 @@ pytestmark = pytest.mark.physics
 def test_scene_holds_two_pandas_a_table_and_the_magazine():
     model = build_scene(SimConfig(), 5).model
     for arm in c.ARMS:
-        for joint in c.ARM_JOINTS:
-            assert model.actuator(c.prefixed(arm, joint)).forcerange[1] in c.JOINT_TORQUE_LIMITS
-        finger = model.joint(c.prefixed(arm, c.FINGER_JOINTS[0]))
+        for joint, torque in zip(PANDA.arms[arm].joints, PANDA.arms[arm].torque_limits):
+            assert model.actuator(joint).forcerange[1] == torque
+        finger = model.joint(PANDA.arms[arm].finger_joints[0])
         assert finger.range[1] == 0.04  # the real hand's: the brick is spanned with spacers
     assert model.geom(c.TABLE_GEOM) is not None
     assert sum(model.body(i).name.endswith("/brick") for i in range(model.nbody)) == 5
@@ -36,9 +37,9 @@ def test_noisy_commands_for_one_second_raise_no_warning():
     model = build_scene(SimConfig(), 4).model
     data = mujoco.MjData(model)
     rng = np.random.default_rng(0)
-    handles = SceneHandles(model, 4)
+    handles = SceneHandles(model, PANDA, 4)
     for arm in c.ARMS:
-        data.qpos[handles.arm_qpos[arm]] = c.HOME_QPOS
+        data.qpos[handles.arm_qpos[arm]] = PANDA.arms[arm].home
     mujoco.mj_forward(model, data)
     low, high = model.actuator_ctrlrange.T
     for _ in range(int(1.0 / model.opt.timestep)):
@@ -49,14 +50,14 @@ def test_noisy_commands_for_one_second_raise_no_warning():
 
 
 def _arm_pose(model: mujoco.MjModel, data: mujoco.MjData, arm: str, q: list[float]) -> None:
-    data.qpos[SceneHandles(model, 1).arm_qpos[arm]] = q
+    data.qpos[SceneHandles(model, PANDA, 1).arm_qpos[arm]] = q
 
 
 def test_arm_arm_contact_sensor_counts_only_contacts_between_the_arms():
     model = build_scene(SimConfig(), 1).model
     data = mujoco.MjData(model)
     adr = model.sensor(c.ARM_ARM_SENSOR).adr[0]
-    SceneHandles(model, 1).place_brick(data, 0, [0.6, 0.0, 0.109])  # 1 mm into the table
+    SceneHandles(model, PANDA, 1).place_brick(data, 0, [0.6, 0.0, 0.109])  # 1 mm into the table
     reach = [1.2, 0.0, -0.6, 0.0, 1.9, 0.785]
     for yaw in (0.0, 1.57):  # forward, then each arm turned towards the other
         _arm_pose(model, data, "left", [-yaw, *reach])
@@ -75,7 +76,7 @@ def test_resting_bricks_sleep_and_a_moved_brick_wakes():
         mujoco.mj_step(model, data)
     trees = [model.body_treeid[model.body(c.brick_name(i) + "brick").id] for i in range(2)]
     assert all(data.tree_asleep[t] >= 0 for t in trees)
-    handles = SceneHandles(model, 2)
+    handles = SceneHandles(model, PANDA, 2)
     handles.place_brick(data, 0, [0.49, 0.01, 0.2])  # as the spawner does: 9 cm above the table
     q = handles.brick_qpos[0]
     for _ in range(200):

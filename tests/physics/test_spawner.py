@@ -10,6 +10,7 @@ from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner
+from pyramid_sim.robots.panda import PANDA
 
 pytestmark = pytest.mark.physics
 
@@ -19,8 +20,8 @@ def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
     plan = make_plan(StructureSpec("pyramid", layers=3), config)
     scene = build_scene(config, n)
     data = mujoco.MjData(scene.model)
-    handles = SceneHandles(scene.model, n)
-    spawner = Spawner(scene.model, handles, plan.spawn, clearance=0.02, arm_clearance=0.1,
+    handles = SceneHandles(scene.model, PANDA, n)
+    spawner = Spawner(scene.model, PANDA, handles, plan.spawn, clearance=0.02, arm_clearance=0.1,
                       jitter=jitter, seed=seed)
     out = []
     for _ in range(n):

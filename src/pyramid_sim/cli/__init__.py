@@ -1,4 +1,4 @@
-"""`pyramid-sim`: plan and build brick structures with two simulated Pandas.
+"""`pyramid-sim`: plan and build brick structures with two simulated robot arms.
 
 Thin: parses arguments into settings (which validate themselves), calls the library, prints.
 Every bad input ends in one line on stderr and exit status 2, before anything is written.
@@ -51,6 +51,7 @@ def make_parser() -> a.Parser:
     scene.add_argument("--out", type=Path, required=True, metavar="FILE",
                        help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)")
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
+    a.add_robot_arg(reach)
     reach.add_argument("--arms", type=a.one_of("arms", (*ARM_CHOICES, "all")), default="all",
                        help="which arm set to check (default all three)")
     return parser

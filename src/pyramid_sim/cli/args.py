@@ -14,8 +14,15 @@ from typing import Callable, NoReturn, Sequence
 
 from ..config import SimConfig, VideoConfig
 from ..core.plan import ARM_CHOICES
-from ..core.structures import MAX_BRICKS, MAX_COURSE, MAX_LAYERS, STRUCTURES, StructureSpec
+from ..core.structures import (
+    MAX_BRICKS,
+    MAX_COURSE,
+    MAX_LAYERS,
+    STRUCTURES,
+    StructureSpec,
+)
 from ..params import PARAMS
+from ..robots import DEFAULT_ROBOT, PRESETS
 from ..sweep.grid import SweepConfig, parse_axis
 
 EXIT_FAILED = 1
@@ -78,7 +85,14 @@ def _size_help(option: str) -> str:
     return f"{', '.join(users)}; accepted {SIZE_FLAGS[option][1]} (defaults in brackets)"
 
 
+def add_robot_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=DEFAULT_ROBOT,
+                   help=f"{', '.join(f'{n} ({r.summary})' for n, r in PRESETS.items())}; "
+                        f"default {DEFAULT_ROBOT}")
+
+
 def add_structure_args(p: argparse.ArgumentParser) -> None:
+    add_robot_arg(p)
     names = sorted(STRUCTURES)
     p.add_argument("--structure", type=one_of("structure", names), default="pyramid-even",
                    metavar="NAME", help=f"{', '.join(names)} (default pyramid-even)")
@@ -153,7 +167,7 @@ def config_from_args(args: argparse.Namespace) -> SimConfig:
     for param in PARAMS:
         config = param.apply(config, getattr(args, param.name))
     layout = replace(config.layout, spawn_jitter_mm=args.spawn_jitter)
-    return replace(config, layout=layout, seed=args.seed)
+    return replace(config, layout=layout, seed=args.seed, robot=args.robot)
 
 
 def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec:
@@ -181,6 +195,7 @@ def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
     )
     return SweepConfig(
         axes=axes, structure=spec_from_args(args, SimConfig()), arms=args.arms, repeats=args.repeats,
+        robot=args.robot,
         spawn_jitter_mm=args.spawn_jitter, workers=args.workers, timeout=args.timeout,
         backend=args.backend, ray_address=args.ray_address,
     )

@@ -135,7 +135,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from ..physics.build import prepare
     from ..sweep.run import report, run_sweep
 
-    prepare(config.structure, SimConfig(), config.arms)  # out of reach: one line, nothing run
+    prepare(config.structure, SimConfig(robot=config.robot), config.arms)  # out of reach: refused
     runs = len(config.runs())
     with tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar:
         rows, ran = run_sweep(
@@ -177,7 +177,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
     from ..physics.reach import ReachChecker, held_fixed
 
     arm_sets = ("both", "left", "right") if args.arms == "all" else (args.arms,)
-    checker = ReachChecker(SimConfig())
+    checker = ReachChecker(SimConfig(robot=args.robot))
     arm_heads = [f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets]
     rows = [["structure", "grows", "other options", *arm_heads]]
     for name, knob in SIZE_KNOB.items():

@@ -40,7 +40,7 @@ class ArmRunner:
 
     @property
     def open_gap(self) -> float:
-        return self.config.gripper.open_gap
+        return self.config.robot_spec.open_gap()
 
     @property
     def squeeze_gap(self) -> float:
@@ -50,7 +50,9 @@ class ArmRunner:
         leave the brick slowly (a ramp to zero would cross the brick in its first few ticks
         and shove it, and open at full speed, which tips a brick just let go)."""
         grip = self.config.gripper
-        return self.config.brick.width - 2 * grip.spacer - grip.force / grip.stiffness
+        return self.config.robot_spec.squeeze_gap(
+            self.config.brick.width, grip.force, grip.stiffness
+        )
 
     def load(self, steps: list[Step]) -> None:
         self.steps = list(steps)

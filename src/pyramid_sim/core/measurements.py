@@ -27,6 +27,7 @@ class Measurements:
     sim_time: float
     wall_time: float
     arm_arm_contacts: int
+    arm_body_contacts: int  # an arm against the robot's own body (torso, head)
     zone_violations: int
     finger_limit_mm: float
     joint_speed_ratio: float

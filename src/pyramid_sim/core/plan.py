@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..config import LayoutConfig, SimConfig
+from ..config import SimConfig
 from ..errors import ConfigError
 from .assignment import Assignment, arrange, single_arm
 from .poses import Pose
@@ -53,10 +53,6 @@ def _xyz(pose: Pose) -> list[float]:
     return [round(pose.x, 6), round(pose.y, 6), round(pose.z, 6)]
 
 
-def _base_y(layout: LayoutConfig, arm: str) -> float:
-    return (layout.left_base if arm == "left" else layout.right_base)[1]
-
-
 def make_plan(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
     """Targets of the structure, assigned to the arms by the seed's rule; with one arm, that
     arm places every brick in the structure's own order (the Brick Manager's single Panda)."""
@@ -71,7 +67,7 @@ def make_plan(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Pla
     )
     # With one arm the structure stands in front of it (the Brick Manager's single Panda built
     # before itself); with two, centred on the spawn spot between them, as the seed.
-    centre_y = spawn.y if arms == "both" else _base_y(layout, arms)
+    centre_y = spawn.y if arms == "both" else config.robot_spec.arms[arms].base[1]
     targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y)
     order = arrange(targets) if arms == "both" else single_arm(targets, arms)
     return Plan(spec, arms, spawn, order)

@@ -12,11 +12,9 @@ from dataclasses import dataclass
 from enum import Enum
 
 from ..config import MotionConfig
+from ..robots import RobotDescription
 from .poses import Pose, grasp_yaw
 
-# Grip this far above the brick centre: at the centre the hand's underside is 6 mm above the
-# brick's top and touched it mid-carry.
-GRASP_HEIGHT = 0.012
 # Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
 YAW_REFERENCE = 0.0
 
@@ -43,7 +41,8 @@ def pick_steps(
     brick: Pose,
     motion: MotionConfig,
     carry_to: Pose | None = None,
-    grasp_height: float = GRASP_HEIGHT,
+    *,
+    grasp_height: float,
     yaw_ref: float = YAW_REFERENCE,
 ) -> list[Step]:
     """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre.
@@ -70,7 +69,8 @@ def pick_steps(
 def place_steps(
     target: Pose,
     motion: MotionConfig,
-    grasp_height: float = GRASP_HEIGHT,
+    *,
+    grasp_height: float,
     yaw_ref: float = YAW_REFERENCE,
 ) -> list[Step]:
     """Steps that set a held brick down at `target` (its resting pose) and let go of it."""
@@ -84,12 +84,12 @@ def place_steps(
     ]
 
 
-def clear_pose(arm: str, motion: MotionConfig) -> Pose:
+def clear_pose(arm: str, robot: RobotDescription) -> Pose:
     """The arm's outer collision-clear pose, out to its own side."""
-    side = 1.0 if arm == "left" else -1.0
-    return Pose(motion.clear_x, side * motion.clear_y, motion.clear_height, 0.0)
+    x, y, z = robot.clear_pose
+    return Pose(x, y if arm == "left" else -y, z, robot.arms[arm].yaw_reference)
 
 
-def clear_steps(arm: str, motion: MotionConfig) -> list[Step]:
-    return [Step("clear", StepKind.MOVE, clear_pose(arm, motion), motion.speed)]
+def clear_steps(arm: str, motion: MotionConfig, robot: RobotDescription) -> list[Step]:
+    return [Step("clear", StepKind.MOVE, clear_pose(arm, robot), motion.speed)]
 

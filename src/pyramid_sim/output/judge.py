@@ -11,7 +11,15 @@ from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
 from ..core.poses import quat_to_matrix, symmetric_yaw_error, tilt_of, yaw_of
-from .result import BrickResult, BuildInputs, BuildResult, FinalPose, Target, Tolerances, versions
+from .result import (
+    BrickResult,
+    BuildInputs,
+    BuildResult,
+    FinalPose,
+    Target,
+    Tolerances,
+    versions,
+)
 
 
 def _round_all(values: object, digits: int) -> tuple[float, ...]:
@@ -70,6 +78,7 @@ def checks(
         "bricks_in_place": all(b.placed for b in bricks),
         "slip": max(slips, default=0.0) <= config.slip_limit_mm,
         "arm_arm_contacts": measured.arm_arm_contacts == 0,
+        "arm_body_contacts": measured.arm_body_contacts == 0,
         "shared_zone": measured.zone_violations == 0,
         "joint_speed": measured.joint_speed_ratio <= 1.0,
         "joint_torque": measured.joint_torque_ratio <= 1.0,
@@ -101,6 +110,7 @@ def failure_reason(
         "slip": f"a brick slid {max(slips, default=0.0):.1f} mm in the hand, over the "
                 f"{config.slip_limit_mm:g} mm limit",
         "arm_arm_contacts": f"{measured.arm_arm_contacts} arm-arm contacts",
+        "arm_body_contacts": f"{measured.arm_body_contacts} contacts of an arm with the robot's body",
         "shared_zone": f"both arms in the shared zone at {measured.zone_violations} control steps",
         "joint_speed": f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit",
         "joint_torque": f"arm joint {measured.torque_joint} demanded "
@@ -135,6 +145,7 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         failure_reason=reason,
         checks=held,
         failed_checks=tuple(name for name, ok in held.items() if not ok),
+        robot=config.robot,
         structure=measured.plan.structure,
         size=dict(measured.plan.spec.size),
         arms=measured.plan.arms,
@@ -157,6 +168,7 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
             round(measured.closest_arm_time, 3) if measured.closest_arm_time is not None else None
         ),
         arm_arm_contacts=measured.arm_arm_contacts,
+        arm_body_contacts=measured.arm_body_contacts,
         shared_zone_violations=measured.zone_violations,
         finger_limit_excess_mm=round(measured.finger_limit_mm, 4),
         max_joint_speed_ratio=round(measured.joint_speed_ratio, 4),

@@ -102,6 +102,7 @@ class BuildResult:
     failure_reason: str | None
     checks: dict[str, bool]  # each condition of success, True where it held
     failed_checks: tuple[str, ...]
+    robot: str  # the preset that built it
     structure: str
     size: dict[str, int]
     arms: str
@@ -122,6 +123,7 @@ class BuildResult:
     closest_arm_approach_mm: float
     closest_arm_approach_t_s: float | None
     arm_arm_contacts: int
+    arm_body_contacts: int  # an arm against its own robot's body (torso, head)
     shared_zone_violations: int
     finger_limit_excess_mm: float
     max_joint_speed_ratio: float

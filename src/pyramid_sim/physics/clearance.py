@@ -12,33 +12,51 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from ..robots import ArmDescription, RobotDescription
 from . import names as c
 
-MEASURED_BODIES = c.IK_GUARDED_BODIES + c.FINGER_BODIES
 FAR = 1.0  # m: approaches farther than this are not measured exactly
 
 
-def arm_geoms(model: mujoco.MjModel, arm: str, bodies: tuple[str, ...] | None = None) -> list[int]:
-    """Ids of the arm's colliding geoms, on the named bodies only if given."""
-    prefix = f"{arm}/"
-    wanted = None if bodies is None else {c.prefixed(arm, b) for b in bodies}
-    ids = []
-    for g in range(model.ngeom):
-        body = model.body(model.geom_bodyid[g]).name
-        if not body.startswith(prefix) or (wanted is not None and body not in wanted):
-            continue
-        if model.geom_contype[g] or model.geom_conaffinity[g]:
-            ids.append(g)
-    return ids
+def subtree(model: mujoco.MjModel, root: str) -> set[int]:
+    """Ids of the body `root` and every body below it."""
+    top = model.body(root).id
+    inside = {top}
+    for b in range(top + 1, model.nbody):  # a body's id is larger than its parent's
+        if model.body_parentid[b] in inside:
+            inside.add(b)
+    return inside
+
+
+def colliding_geoms(model: mujoco.MjModel, bodies: set[int]) -> list[int]:
+    """Ids of the colliding geoms on `bodies`, in id order."""
+    return [
+        g for g in range(model.ngeom)
+        if model.geom_bodyid[g] in bodies and (model.geom_contype[g] or model.geom_conaffinity[g])
+    ]
+
+
+def arm_geoms(
+    model: mujoco.MjModel, arm: ArmDescription, bodies: tuple[str, ...] | None = None
+) -> list[int]:
+    """Ids of the arm's colliding geoms (its root body's subtree), on the named bodies only if
+    given."""
+    inside = subtree(model, arm.root_body)
+    if bodies is not None:
+        inside &= {model.body(b).id for b in bodies}
+    return colliding_geoms(model, inside)
 
 
 class ArmClearance:
     """The closest approach between the two arms, elbow to fingertips, over every control
     step."""
 
-    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, robot: RobotDescription) -> None:
         self.model, self.data = model, data
-        left, right = (arm_geoms(model, arm, MEASURED_BODIES) for arm in c.ARMS)
+        left, right = (
+            arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies + robot.arms[a].finger_bodies)
+            for a in c.ARMS
+        )
         pairs = np.array([(a, b) for a in left for b in right])
         self._g1, self._g2 = pairs[:, 0], pairs[:, 1]
         self._rsum = model.geom_rbound[self._g1] + model.geom_rbound[self._g2]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from ..robots import RobotDescription
 from . import names as c
 from .handles import SceneHandles
 
@@ -18,11 +19,13 @@ def mixed_friction(model: mujoco.MjModel, g1: int, g2: int) -> np.ndarray:
     return np.maximum(model.geom_friction[g1], model.geom_friction[g2])
 
 
-def contact_frictions(model: mujoco.MjModel, handles: SceneHandles) -> dict[str, float]:
+def contact_frictions(
+    model: mujoco.MjModel, handles: SceneHandles, robot: RobotDescription
+) -> dict[str, float]:
     """The sliding friction of each kind of contact a brick makes: with another brick, with
     the table, and with a finger pad."""
     brick = [int(model.body_geomadr[b]) for b in (handles.brick_body[0], handles.brick_body[-1])]
     table = model.geom(c.TABLE_GEOM).id
-    pad = model.geom(c.prefixed(c.ARMS[0], c.PAD_GEOMS[0])).id
+    pad = model.geom(robot.arms[c.ARMS[0]].pads[0]).id
     pairs = {"brick_brick": brick, "brick_table": (brick[0], table), "pad_brick": (pad, brick[0])}
     return {kind: float(mixed_friction(model, *pair)[0]) for kind, pair in pairs.items()}

@@ -22,8 +22,9 @@ class ArmDispatch:
         self, plan: Plan, config: SimConfig, spawner: Spawner, tcp: dict[str, Pose]
     ) -> None:
         self.plan, self.config, self.spawner = plan, config, spawner
+        self.robot = config.robot_spec
         self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
-        self.runners = {a: ArmRunner(a, config, tcp[a], config.gripper.open_gap) for a in c.ARMS}
+        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap()) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
         self._settle_until: float | None = None
@@ -55,7 +56,7 @@ class ArmDispatch:
             return False
         for a in c.ARMS:
             if not self._retracting[a] and not self.runners[a].busy:
-                self.runners[a].load(clear_steps(a, self.config.motion))
+                self.runners[a].load(clear_steps(a, self.config.motion, self.robot))
                 self._retracting[a] = True
         if all(self._retracting.values()) and not any(r.busy for r in self.runners.values()):
             if self._settle_until is None:
@@ -68,15 +69,17 @@ class ArmDispatch:
         """Give an idle arm the steps of its task in the current phase."""
         task = self.scheduler.task(arm)
         motion = self.config.motion
+        grasp = {"grasp_height": self.robot.grasp_height,
+                 "yaw_ref": self.robot.arms[arm].yaw_reference}
         if task.action in (Action.PICK, Action.PLACE):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
             if task.action is Action.PICK:
-                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target))
+                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target, **grasp))
             else:
-                self.runners[arm].load(place_steps(target, motion))
+                self.runners[arm].load(place_steps(target, motion, **grasp))
         elif task.action is Action.CLEAR:
-            self.runners[arm].load(clear_steps(arm, motion))
+            self.runners[arm].load(clear_steps(arm, motion, self.robot))
         self.task_of[arm] = task
 
     def advance(
@@ -97,6 +100,6 @@ class ArmDispatch:
         """The arm lost its brick: fingers open, off to clear, the brick back in its queue."""
         runner = self.runners[arm]
         runner.gap = runner.open_gap
-        runner.load(clear_steps(arm, self.config.motion))
+        runner.load(clear_steps(arm, self.config.motion, self.robot))
         self.scheduler.dropped(arm, brick)
         self.task_of[arm] = self.scheduler.task(arm)

@@ -6,37 +6,36 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from ..robots import RobotDescription
 from . import names as c
 
 
-def arm_qpos_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
-    """qpos addresses of one arm's seven joints in `model`."""
-    return np.array([model.joint(c.prefixed(arm, j)).qposadr[0] for j in c.ARM_JOINTS])
+def qpos_addresses(model: mujoco.MjModel, joints: tuple[str, ...]) -> np.ndarray:
+    """qpos addresses of the named joints in `model`."""
+    return np.array([model.joint(j).qposadr[0] for j in joints])
 
 
-def arm_dof_addresses(model: mujoco.MjModel, arm: str) -> np.ndarray:
-    """dof addresses of one arm's seven joints in `model`."""
-    return np.array([model.joint(c.prefixed(arm, j)).dofadr[0] for j in c.ARM_JOINTS])
+def dof_addresses(model: mujoco.MjModel, joints: tuple[str, ...]) -> np.ndarray:
+    """dof addresses of the named joints in `model`."""
+    return np.array([model.joint(j).dofadr[0] for j in joints])
 
 
 class SceneHandles:
     """Addresses of the arms' joints, actuators, fingers, tool sites and zone bodies, and of
     every brick in the magazine (by slot)."""
 
-    def __init__(self, model: mujoco.MjModel, n_bricks: int) -> None:
-        self.arm_qpos = {a: arm_qpos_addresses(model, a) for a in c.ARMS}
-        self.arm_dofs = {a: arm_dof_addresses(model, a) for a in c.ARMS}
+    def __init__(self, model: mujoco.MjModel, robot: RobotDescription, n_bricks: int) -> None:
+        arms = robot.arms
+        self.arm_qpos = {a: qpos_addresses(model, arms[a].joints) for a in c.ARMS}
+        self.arm_dofs = {a: dof_addresses(model, arms[a].joints) for a in c.ARMS}
+        # Each arm joint's servo is named as the joint it drives.
         self.arm_actuators = {
-            a: np.array([model.actuator(c.prefixed(a, j)).id for j in c.ARM_JOINTS]) for a in c.ARMS
+            a: np.array([model.actuator(j).id for j in arms[a].joints]) for a in c.ARMS
         }
-        self.gripper = {a: model.actuator(c.prefixed(a, c.GRIPPER_ACTUATOR)).id for a in c.ARMS}
-        self.finger_qpos = {
-            a: [model.joint(c.prefixed(a, j)).qposadr[0] for j in c.FINGER_JOINTS] for a in c.ARMS
-        }
-        self.tcp_site = {a: model.site(c.prefixed(a, c.TCP_SITE)).id for a in c.ARMS}
-        self.zone_bodies = {
-            a: [model.body(c.prefixed(a, b)).id for b in c.ZONE_BODIES] for a in c.ARMS
-        }
+        self.gripper = {a: model.actuator(arms[a].gripper_actuator).id for a in c.ARMS}
+        self.finger_qpos = {a: list(qpos_addresses(model, arms[a].finger_joints)) for a in c.ARMS}
+        self.tcp_site = {a: model.site(arms[a].tcp_site).id for a in c.ARMS}
+        self.zone_bodies = {a: [model.body(b).id for b in arms[a].zone_bodies] for a in c.ARMS}
         joints = [model.joint(c.brick_name(i) + "joint") for i in range(n_bricks)]
         self.brick_qpos = [j.qposadr[0] for j in joints]
         self.brick_dofs = [j.dofadr[0] for j in joints]

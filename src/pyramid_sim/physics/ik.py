@@ -17,8 +17,8 @@ from ..config import SimConfig
 from ..core.poses import Pose, tcp_quaternion, yaw_of
 from ..errors import UnreachableError
 from . import names as c
-from .clearance import arm_geoms
-from .handles import arm_dof_addresses, arm_qpos_addresses
+from .clearance import arm_geoms, colliding_geoms
+from .handles import dof_addresses, qpos_addresses
 from .scene import build_spec
 
 # mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
@@ -37,7 +37,7 @@ class _BrakingLimit(mink.Limit):
     """mink's collision avoidance limit, reshaped so the arms can always stop in time.
 
     mink bounds each step's approach by a share of the gap left (gain x gap / dt), which allows
-    full speed until just short of the minimum and then an instant stop; the Panda's
+    full speed until just short of the minimum and then an instant stop; the arm's
     acceleration bounds cannot follow (with both hands sent to one point, and the velocity
     clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
     is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
@@ -64,18 +64,20 @@ class DualArmIK:
     def __init__(
         self,
         config: SimConfig,
-        posture_cost: float = 1e-2,
+        posture_cost: float | None = None,
         damping: float = 1e-2,
         limit_acceleration: bool = True,
     ) -> None:
         self.damping = damping
+        self.robot = robot = config.robot_spec
+        arms = robot.arms
         self.model = build_spec(config, 0, with_bricks=False).compile()
         self.configuration = mink.Configuration(self.model)
         self.dt = config.motion.control_dt
-        self.qadr = {arm: arm_qpos_addresses(self.model, arm) for arm in c.ARMS}
+        self.qadr = {arm: qpos_addresses(self.model, arms[arm].joints) for arm in c.ARMS}
         self.tasks = {
             arm: mink.FrameTask(
-                frame_name=c.prefixed(arm, c.TCP_SITE),
+                frame_name=arms[arm].tcp_site,
                 frame_type="site",
                 position_cost=1.0,
                 orientation_cost=1.0,
@@ -85,40 +87,52 @@ class DualArmIK:
             for arm in c.ARMS
         }
         # The same gain, so frame and posture tasks balance where they did at gain 1.
-        self.posture = mink.PostureTask(self.model, cost=posture_cost, gain=FRAME_GAIN)
+        cost = robot.posture_cost if posture_cost is None else posture_cost
+        self.posture = mink.PostureTask(self.model, cost=cost, gain=FRAME_GAIN)
         # A margin under the real limits: the servos overshoot the IK's velocity a little.
         velocities = {
-            c.prefixed(arm, j): VELOCITY_MARGIN * v
+            j: VELOCITY_MARGIN * v
             for arm in c.ARMS
-            for j, v in zip(c.ARM_JOINTS, c.JOINT_VELOCITY_LIMITS)
+            for j, v in zip(arms[arm].joints, arms[arm].velocity_limits)
         }
-        guarded = [arm_geoms(self.model, arm, c.IK_GUARDED_BODIES) for arm in c.ARMS]
+        guarded = [arm_geoms(self.model, arms[arm], arms[arm].guarded_bodies) for arm in c.ARMS]
+        pairs = [tuple(guarded)]
+        if robot.static_bodies:  # and each arm off the robot's own body (torso, head)
+            body = colliding_geoms(self.model, {self.model.body(b).id for b in robot.static_bodies})
+            pairs += [(arm, body) for arm in guarded]
         self.limits = [
             mink.ConfigurationLimit(self.model),
             mink.VelocityLimit(self.model, velocities),
             # Collision safety beyond the scheduler: the QP will not close the gap between the
             # arms' links below the minimum distance, whatever the targets ask.
-            _BrakingLimit(self.model, [tuple(guarded)], config.motion.arm_min_distance),
+            _BrakingLimit(self.model, pairs, config.motion.arm_min_distance),
         ]
         self._collision_rows = self.limits[-1].limit.max_num_contacts  # the QP's last rows
         self.max_dv = np.full(self.model.nv, np.inf)
         if limit_acceleration:
             for arm in c.ARMS:
-                dofs = arm_dof_addresses(self.model, arm)
-                self.max_dv[dofs] = np.array(c.JOINT_ACCELERATION_LIMITS) * self.dt
+                dofs = dof_addresses(self.model, arms[arm].joints)
+                self.max_dv[dofs] = np.array(arms[arm].acceleration_limits) * self.dt
         self._task_list = [*self.tasks.values(), self.posture]
         self._targets: dict[str, Pose] = {}
         self.velocity = np.zeros(self.model.nv)
-        joint_ids = [self.model.joint(c.prefixed(a, j)).id for a in c.ARMS for j in c.ARM_JOINTS]
+        joint_ids = [self.model.joint(j).id for a in c.ARMS for j in arms[a].joints]
         self.limited_q = self.model.jnt_qposadr[joint_ids]
         self.q_low, self.q_high = self.model.jnt_range[joint_ids].T
-        self.reset(np.array(c.HOME_QPOS), np.array(c.HOME_QPOS))
+        self.reset_home()
+
+    def home(self, arm: str) -> np.ndarray:
+        return np.array(self.robot.arms[arm].home)
+
+    def reset_home(self) -> None:
+        """Both arms at their home postures."""
+        self.reset(self.home("left"), self.home("right"))
 
     def reset(self, left_q: np.ndarray, right_q: np.ndarray) -> None:
         """Put both arms at the given joint positions; posture pulls towards the home pose."""
         home = self.model.qpos0.copy()
         for arm in c.ARMS:
-            home[self.qadr[arm]] = c.HOME_QPOS
+            home[self.qadr[arm]] = self.home(arm)
         self.posture.set_target(home)
         q = self.model.qpos0.copy()
         q[self.qadr["left"]] = left_q
@@ -127,7 +141,7 @@ class DualArmIK:
         self.velocity = np.zeros(self.model.nv)
         for arm in c.ARMS:
             self.tasks[arm].set_target(self.configuration.get_transform_frame_to_world(
-                c.prefixed(arm, c.TCP_SITE), "site"))
+                self.robot.arms[arm].tcp_site, "site"))
             self._targets.pop(arm, None)
 
     def arm_q(self, arm: str) -> np.ndarray:
@@ -136,7 +150,7 @@ class DualArmIK:
     def tcp_pose(self, arm: str) -> Pose:
         """Where the IK's model has the arm's tool centre now."""
         data = self.configuration.data
-        site = data.site(c.prefixed(arm, c.TCP_SITE))
+        site = data.site(self.robot.arms[arm].tcp_site)
         x, y, z = site.xpos
         return Pose(float(x), float(y), float(z), yaw_of(site.xmat.reshape(3, 3)))
 
@@ -151,7 +165,7 @@ class DualArmIK:
     def step(self) -> None:
         """One control step: solve for joint velocities and integrate them over dt.
 
-        The change of velocity stays within the Panda's acceleration limits (see `_solve`): a
+        The change of velocity stays within the arm's acceleration limits (see `_solve`): a
         sudden reversal (near the shoulder singularity) would shake the brick loose.
         """
         velocity = self._solve()
@@ -201,7 +215,7 @@ class DualArmIK:
         err = self.tasks[arm].compute_error(self.configuration)
         return float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:]))
 
-    def solve(self, arm: str, pose: Pose, max_steps: int = 400, tol: float = 1e-3) -> np.ndarray:
+    def solve(self, arm: str, pose: Pose, max_steps: int = 1500, tol: float = 1e-3) -> np.ndarray:
         """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""
         self.set_target(arm, pose)
         pos_err = float("inf")

@@ -21,7 +21,7 @@ from .dispatch import ArmDispatch
 from .handles import SceneHandles
 from .hooks import BuildHooks
 from .ik import DualArmIK
-from .monitor import StepMonitor
+from .monitor import StepMonitor, joint_limits
 from .readout import measurements
 from .scene import build_scene
 from .spawner import Spawner
@@ -41,13 +41,13 @@ class BuildLoop:
         scene = build_scene(config, len(plan.bricks) + config.spare_bricks)
         self.model = m = scene.model
         self.data = mujoco.MjData(m)
-        self.handles = h = SceneHandles(m, scene.n_bricks)
+        self.handles = h = SceneHandles(m, config.robot_spec, scene.n_bricks)
         self.ik = DualArmIK(config)
         self.zone = shared_zone(
             plan.spawn, [b.target.pose for b in plan.bricks], config.brick.length / 2, 0.04
         )
         self.spawner = Spawner(
-            m, h, plan.spawn, clearance=SPOT_CLEARANCE, arm_clearance=SPOT_ARM_CLEARANCE,
+            m, config.robot_spec, h, plan.spawn, clearance=SPOT_CLEARANCE, arm_clearance=SPOT_ARM_CLEARANCE,
             jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
         )
         self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
@@ -55,14 +55,14 @@ class BuildLoop:
         self.dispatch = ArmDispatch(
             plan, config, self.spawner, {a: self.ik.tcp_pose(a) for a in c.ARMS}
         )
-        self.clearance = ArmClearance(m, self.data)
+        self.clearance = ArmClearance(m, self.data, config.robot_spec)
         self.monitor = StepMonitor(
             m, self.data,
             dofs=np.concatenate([h.arm_dofs[a] for a in c.ARMS]),
             qpos=np.concatenate([h.arm_qpos[a] for a in c.ARMS]),
             actuators=np.concatenate([h.arm_actuators[a] for a in c.ARMS]),
             fingers=np.concatenate([h.finger_qpos[a] for a in c.ARMS]),
-            finger_stroke=config.gripper.stroke,
+            limits=joint_limits(m, config.robot_spec),
         )
         self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
         self.placed = self.zone_violations = self.steps = 0
@@ -71,16 +71,17 @@ class BuildLoop:
 
     def _reset_arms(self) -> None:
         """Both arms start at their outer clear poses, outside the shared zone."""
-        d, h, grip = self.data, self.handles, self.config.gripper
-        home = np.array(c.HOME_QPOS)
-        self.ik.reset(home, home)
-        start = {a: self.ik.solve(a, clear_pose(a, self.config.motion)) for a in c.ARMS}
+        d, h = self.data, self.handles
+        self.ik.reset_home()
+        robot = self.config.robot_spec
+        start = {a: self.ik.solve(a, clear_pose(a, robot)) for a in c.ARMS}
         for a in c.ARMS:
             d.qpos[h.arm_qpos[a]] = start[a]
             d.ctrl[h.arm_actuators[a]] = start[a]
-            d.ctrl[h.gripper[a]] = grip.open_gap
-            for q in h.finger_qpos[a]:
-                d.qpos[q] = grip.open_gap / 2
+            opened = robot.open_gap()
+            d.ctrl[h.gripper[a]] = opened
+            for q, sign in zip(h.finger_qpos[a], robot.finger_signs):
+                d.qpos[q] = sign * opened / 2
         self.ik.reset(start["left"], start["right"])
         mujoco.mj_forward(self.model, d)
 

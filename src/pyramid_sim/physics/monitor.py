@@ -12,9 +12,12 @@ Python work is the price the build pays over bare `mj_step`, so it is kept to th
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import mujoco
 import numpy as np
 
+from ..robots import RobotDescription
 from . import names as c
 
 ROWS = 500  # physics steps buffered between reductions (1 s at 2 ms)
@@ -33,6 +36,16 @@ class _Span:
         return self.buffer[:n, self.columns]
 
 
+@dataclass(frozen=True)
+class JointLimits:
+    """What the monitor holds the state to, in the order of the addresses it is given."""
+
+    velocity: np.ndarray  # rad/s, per arm joint
+    torque: np.ndarray  # N m, per arm joint
+    finger_low: np.ndarray  # m, per finger joint
+    finger_high: np.ndarray
+
+
 class StepMonitor:
     """Peaks of joint speed and demanded torque (as fractions of the arm's limits), finger
     travel past its joint range, and the number of arm-arm contacts, over every physics step.
@@ -47,7 +60,7 @@ class StepMonitor:
         qpos: np.ndarray,
         actuators: np.ndarray,
         fingers: np.ndarray,
-        finger_stroke: float,
+        limits: JointLimits,
     ) -> None:
         self._speed = _Span(data.qvel, dofs)
         self._angle = _Span(data.qpos, qpos)
@@ -60,17 +73,22 @@ class StepMonitor:
         self._sensors = data.sensordata
         self._warnings = data.warning.number  # counts, kept up by MuJoCo
         self._no_warnings = bytes(self._warnings.nbytes)
-        self._contact_adr = int(model.sensor(c.ARM_ARM_SENSOR).adr[0])
-        self._contacts = np.zeros(ROWS)
+        # Contact counts MuJoCo keeps: the arms with each other, then with the robot's body.
+        self._contact_adr = [int(model.sensor(c.ARM_ARM_SENSOR).adr[0])] + [
+            int(model.sensor_adr[s]) for s in range(model.nsensor)
+            if model.sensor(s).name.startswith(c.ARM_BODY_SENSOR)
+        ]
+        self._contacts = np.zeros((ROWS, len(self._contact_adr)))
         self._row = 0
-        self.stroke = finger_stroke
-        self._inv_vel = 1.0 / np.tile(c.JOINT_VELOCITY_LIMITS, len(dofs) // 7)
-        self._inv_torque = 1.0 / np.tile(c.JOINT_TORQUE_LIMITS, len(actuators) // 7)
+        self._finger_low, self._finger_high = limits.finger_low, limits.finger_high
+        self._inv_vel = 1.0 / np.asarray(limits.velocity)
+        self._inv_torque = 1.0 / np.asarray(limits.torque)
         self.torque_joint: int | None = None  # arm joint (0-based, both arms) of the peak
         self.speed_ratio = 0.0
         self.torque_ratio = 0.0
         self.finger_excess = 0.0  # m past either end of the finger joints' range
         self.arm_arm_contacts = 0
+        self.arm_body_contacts = 0  # an arm against the robot's own body (torso, head)
 
     def record(self) -> bool:
         """Copy the state after one physics step into the buffers; True if MuJoCo raised a
@@ -101,6 +119,21 @@ class StepMonitor:
         peak = float(ratio.max())
         if peak > self.torque_ratio:
             self.torque_ratio, self.torque_joint = peak, int(ratio.max(axis=0).argmax())
-        over = max(float(f.max()) - self.stroke, -float(f.min()))
+        over = max(float((f - self._finger_high).max()), float((self._finger_low - f).max()))
         self.finger_excess = max(self.finger_excess, over)
-        self.arm_arm_contacts += int(self._contacts[:n].sum())
+        counts = self._contacts[:n].sum(axis=0)
+        self.arm_arm_contacts += int(counts[0])
+        self.arm_body_contacts += int(counts[1:].sum())
+
+
+def joint_limits(model: mujoco.MjModel, robot: RobotDescription) -> JointLimits:
+    """Both arms' limits from the robot's description, left arm first; the fingers' ranges as
+    the compiled model has them."""
+    arms = [robot.arms[a] for a in c.ARMS]
+    fingers = [model.joint(j).id for arm in arms for j in arm.finger_joints]
+    low, high = model.jnt_range[fingers].T
+    return JointLimits(
+        velocity=np.concatenate([arm.velocity_limits for arm in arms]),
+        torque=np.concatenate([arm.torque_limits for arm in arms]),
+        finger_low=low.copy(), finger_high=high.copy(),
+    )

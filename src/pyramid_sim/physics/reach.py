@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import numpy as np
-
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
 from ..core.poses import Pose
@@ -19,19 +17,20 @@ from .ik import DualArmIK
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
     """(arm, what, pose) of every move a build of `plan` makes."""
-    motion = config.motion
+    motion, robot = config.motion, config.robot_spec
     poses = []
     for arm in c.ARMS:
-        poses.append((arm, "clear pose", clear_pose(arm, motion)))
+        poses.append((arm, "clear pose", clear_pose(arm, config.robot_spec)))
     goals = plan.spec.goals
     for b in plan.bricks:
         label = f"brick {b.index}"
         if goals:
             label += f" (goals row {goals.index(b.target) + 1})"
-        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose):
+        grasp = {"grasp_height": robot.grasp_height, "yaw_ref": robot.arms[b.arm].yaw_reference}
+        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, **grasp):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} pick {step.name}", step.pose))
-        for step in place_steps(b.target.pose, motion):
+        for step in place_steps(b.target.pose, motion, **grasp):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} {step.name}", step.pose))
     return poses
@@ -44,16 +43,15 @@ class ReachChecker:
         self.config = config
         self.ik = DualArmIK(config, limit_acceleration=False)
         self._known: dict[tuple[str, Pose], str | None] = {}
-        home = np.array(c.HOME_QPOS)
-        self.ik.reset(home, home)
-        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.motion)) for a in c.ARMS}
+        self.ik.reset_home()
+        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.robot_spec)) for a in c.ARMS}
 
     def why_not(self, arm: str, pose: Pose) -> str | None:
         """None if the arm reaches the pose from home, else why not. The other arm waits at its
         clear pose, as in a build, where the IK keeps the arms apart."""
         key = (arm, pose)
         if key not in self._known:
-            start = {arm: np.array(c.HOME_QPOS), other(arm): self._clear_q[other(arm)]}
+            start = {arm: self.ik.home(arm), other(arm): self._clear_q[other(arm)]}
             self.ik.reset(start["left"], start["right"])
             try:
                 self.ik.solve(arm, pose)

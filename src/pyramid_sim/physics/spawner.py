@@ -9,6 +9,7 @@ import mujoco
 import numpy as np
 
 from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
+from ..robots import RobotDescription
 from . import names as c
 from .clearance import arm_geoms
 from .handles import SceneHandles
@@ -25,6 +26,7 @@ class Spawner:
     def __init__(
         self,
         model: mujoco.MjModel,
+        robot: RobotDescription,
         handles: SceneHandles,
         spawn: Pose,
         clearance: float,
@@ -35,7 +37,7 @@ class Spawner:
         self.model, self.spawn = model, spawn
         self.clearance, self.arm_clearance = clearance, arm_clearance
         self.volume = model.geom(c.SPAWN_VOLUME).id
-        self.arm_geoms = [g for a in c.ARMS for g in arm_geoms(model, a)]
+        self.arm_geoms = [g for a in c.ARMS for g in arm_geoms(model, robot.arms[a])]
         self._fromto = np.zeros(6)
         self.jitter = jitter
         self.rng = np.random.default_rng(seed)

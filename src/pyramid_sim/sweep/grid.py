@@ -15,6 +15,7 @@ from ..core.plan import ARM_CHOICES
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
 from ..params import PARAMS, check_range, param
+from ..robots import DEFAULT_ROBOT
 
 MAX_POINTS_PER_AXIS = 50
 MAX_RUNS = 10_000
@@ -81,9 +82,10 @@ class RunSpec:
     params: tuple[tuple[str, float], ...]  # in PARAMS order
     seed: int
     spawn_jitter_mm: float
+    robot: str = DEFAULT_ROBOT
 
     def config(self, base: SimConfig | None = None) -> SimConfig:
-        config = base or SimConfig()
+        config = replace(base or SimConfig(), robot=self.robot)
         for name, value in self.params:
             config = param(name).apply(config, value)
         layout = replace(config.layout, spawn_jitter_mm=self.spawn_jitter_mm)
@@ -92,6 +94,7 @@ class RunSpec:
     def key(self) -> tuple[str, ...]:
         """The run's identity as the CSV spells it (see sweep_store.KEY_COLUMNS)."""
         return (
+            self.robot,
             self.structure.name,
             self.structure.size_text(),
             self.arms,
@@ -114,8 +117,10 @@ class SweepConfig:
     timeout: float = 900.0
     backend: str = "process"
     ray_address: str | None = None
+    robot: str = DEFAULT_ROBOT
 
     def __post_init__(self) -> None:
+        SimConfig(robot=self.robot)  # an unknown robot: one line naming the presets
         if self.arms not in ARM_CHOICES:
             raise ConfigError(f"arms: unknown {self.arms!r}; accepted {', '.join(ARM_CHOICES)}")
         check_range("repeats", self.repeats, 1, 100)
@@ -152,7 +157,7 @@ class SweepConfig:
         for axis in self.full_axes():
             points = [p + ((axis.name, v),) for p in points for v in axis.values]
         return [
-            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm)
+            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot)
             for p in points
             for seed in range(self.repeats)
         ]

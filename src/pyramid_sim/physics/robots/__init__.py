@@ -1,0 +1,22 @@
+"""The physics side of the robot presets: each builds its robot into the scene's MjSpec."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import mujoco
+
+from ...config import SimConfig
+from ...robots import RobotDescription
+from .baxter import add_baxter
+from .panda import add_panda_pair
+
+Builder = Callable[[mujoco.MjSpec, SimConfig, RobotDescription], None]
+BUILDERS: dict[str, Builder] = {"panda": add_panda_pair, "baxter": add_baxter}
+
+
+def add_robot(spec: mujoco.MjSpec, config: SimConfig) -> RobotDescription:
+    """The configured robot built into `spec`; returns its description."""
+    robot = config.robot_spec
+    BUILDERS[robot.name](spec, config, robot)
+    return robot

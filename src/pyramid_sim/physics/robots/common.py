@@ -1,0 +1,84 @@
+"""What every robot's model gets, whatever its source: position servos with the real limits
+(gravity compensation counted against them), one force-limited gripper servo on a tendon across
+both fingers, and finger pads with their own friction and stiff contact."""
+
+from __future__ import annotations
+
+import importlib.metadata
+from functools import lru_cache
+from pathlib import Path
+
+import mujoco
+
+from ...config import GripperConfig
+from ...robots import ArmDescription, RobotDescription
+
+PAD_SOLREF = (0.004, 1.0)
+PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
+GRIPPER_DAMPING = 40.0  # N s/m of the gripper servo
+
+
+@lru_cache(maxsize=1)
+def robots_dir() -> Path:
+    """example-robot-data's robots folder (its Python module needs pinocchio: not used)."""
+    dist = importlib.metadata.distribution("example-robot-data")
+    return Path(str(dist.locate_file("cmeel.prefix/share/example-robot-data/robots")))
+
+
+def local(name: str) -> str:
+    """A name as the robot's own model spells it, before `attach` adds an arm's prefix."""
+    return name.split("/", 1)[-1]
+
+
+def add_servos(spec: mujoco.MjSpec, arm: ArmDescription, armature: float, names=local) -> None:
+    """A position servo per arm joint, named as the joint, with the arm's gains and torque
+    limits; gravity compensation is the servo's work (actuatorgravcomp), so it counts against
+    the same limit instead of being a free torque."""
+    for joint_name, kp, damping, torque in zip(arm.joints, arm.kp, arm.damping, arm.torque_limits):
+        joint = spec.joint(names(joint_name))
+        joint.armature = armature
+        joint.damping = [damping, 0.0, 0.0]
+        act = spec.add_actuator(
+            name=names(joint_name), target=names(joint_name), trntype=mujoco.mjtTrn.mjTRN_JOINT
+        )
+        act.set_to_position(kp=kp, kv=0.0)
+        act.ctrlrange = joint.range
+        act.ctrllimited = True
+        act.forcerange = [-torque, torque]
+        act.forcelimited = True
+        joint.actgravcomp = True
+        joint.actfrcrange = [-torque, torque]
+        joint.actfrclimited = True
+
+
+def tune_pads(spec: mujoco.MjSpec, pads: list[mujoco.MjsGeom], grip: GripperConfig) -> None:
+    """The pads' own friction, torsional friction, stiff contact and a priority over bricks,
+    so a held brick does not creep and the bricks' friction stays out of the grip."""
+    for pad in pads:
+        pad.friction = [grip.pad_friction, 0.02, 0.0002]
+        pad.condim = 4
+        pad.priority = 1
+        pad.solref = list(PAD_SOLREF)
+        pad.solimp = list(PAD_SOLIMP)
+        pad.rgba = [0.15, 0.15, 0.15, 1]
+
+
+def add_gripper_servo(
+    spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription, grip: GripperConfig,
+    names=local,
+) -> None:
+    """One servo on a tendon summing both fingers' opening travel (command = finger gap less
+    the closed width), force-limited to the grip force, stiff enough that any command short of
+    the brick saturates at that limit."""
+    tendon = spec.add_tendon(name=names(arm.gripper_actuator) + "_gap")
+    for joint_name, sign in zip(arm.finger_joints, robot.finger_signs):
+        tendon.wrap_joint(names(joint_name), float(sign))
+    act = spec.add_actuator(
+        name=names(arm.gripper_actuator), target=names(arm.gripper_actuator) + "_gap",
+        trntype=mujoco.mjtTrn.mjTRN_TENDON,
+    )
+    act.set_to_position(kp=grip.stiffness, kv=GRIPPER_DAMPING)
+    act.ctrlrange = [0.0, 2 * robot.finger_stroke]
+    act.ctrllimited = True
+    act.forcerange = [-grip.force, grip.force]
+    act.forcelimited = True

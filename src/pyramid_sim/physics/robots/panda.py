@@ -1,0 +1,78 @@
+"""The Panda pair's model: example-robot-data's panda.urdf, once per arm, attached as `left/`
+and `right/` at the preset's bases, each on a pedestal.
+
+What is changed from the URDF, and why:
+- each finger mounted 12 mm further out along its own sliding axis (spacers: the brick is
+  86 mm wide, the stock hand opens 80 mm), the finger joints keeping the real 0-40 mm;
+- one force-limited position servo on a tendon across both fingers (common.py), the URDF's
+  <mimic> kept as a joint equality, stiffened, so the fingers stay symmetric;
+- position servos on the arm joints with the real arm's torque limits, armature 0.1, the
+  preset's damping, and gravity compensation counted against the limits;
+- the rubber finger tips are the pads (common.py);
+- the collision meshes serve as visuals (the visual meshes are .dae, which MuJoCo cannot read).
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from ...config import SimConfig
+from ...robots import ArmDescription, RobotDescription
+from .common import add_gripper_servo, add_servos, local, robots_dir, tune_pads
+
+ARMATURE = 0.1
+PEDESTAL = (0.11, 0.3355)  # m, radius and half height: from the floor to the base
+
+
+def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) -> mujoco.MjSpec:
+    """One Panda with the changes listed in this module's docstring, its names unprefixed."""
+    root = robots_dir() / "panda_description"
+    text = (root / "urdf" / "panda.urdf").read_text()
+    meshes = root / "meshes" / "collision"
+    # Absolute mesh paths survive attach() and to_xml(); the .dae visuals are discarded.
+    text = text.replace(
+        "package://example-robot-data/robots/panda_description/meshes/collision/", f"{meshes}/"
+    )
+    compiler = '<mujoco><compiler fusestatic="false" discardvisual="true"/></mujoco>'
+    robot_tag_end = text.index(">", text.index("<robot")) + 1
+    spec = mujoco.MjSpec.from_string(text[:robot_tag_end] + compiler + text[robot_tag_end:])
+    add_servos(spec, arm, ARMATURE)
+    for body in spec.bodies:
+        if body.name.startswith("panda_") and body.name != local(arm.root_body):
+            body.gravcomp = 1.0
+    _fit_fingers(spec, arm, robot)
+    tune_pads(spec, [spec.geom(local(p)) for p in arm.pads], config.gripper)
+    add_gripper_servo(spec, arm, robot, config.gripper)
+    spec.body("panda_hand_tcp").add_site(
+        name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0]
+    )
+    return spec
+
+
+def _fit_fingers(spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription) -> None:
+    spacer = robot.closed_width / 2  # the stock fingers meet at zero travel
+    for joint_name, body_name, pad_name in zip(arm.finger_joints, arm.finger_bodies, arm.pads):
+        joint = spec.joint(local(joint_name))
+        joint.range = [0.0, robot.finger_stroke]
+        joint.damping = [2.0, 0.0, 0.0]
+        joint.armature = 0.01
+        body = spec.body(local(body_name))
+        body.pos = np.array(body.pos) + spacer * np.array(joint.axis)
+        body.geoms[3].name = local(pad_name)  # the URDF's "rubber tip with which to grasp"
+    # The URDF's <mimic> arrives as a joint equality; stiffen it so the fingers stay symmetric.
+    for eq in spec.equalities:
+        if eq.type == mujoco.mjtEq.mjEQ_JOINT:
+            eq.solref = [0.005, 1.0]
+
+
+def add_panda_pair(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) -> None:
+    """Both Pandas into the scene, each on its pedestal at its base."""
+    for name, arm in robot.arms.items():
+        x, y, z = arm.base
+        spec.worldbody.add_geom(
+            name=f"{name}_pedestal", type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[*PEDESTAL, 0],
+            pos=[x, y, z - PEDESTAL[1]], material="pedestal",
+        )
+        frame = spec.worldbody.add_frame(pos=list(arm.base))
+        spec.attach(arm_spec(arm, robot, config), prefix=f"{name}/", frame=frame)

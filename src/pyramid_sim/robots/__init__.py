@@ -1,0 +1,21 @@
+"""Robot presets: each a `RobotDescription` the physics builds and the planner reads."""
+
+from __future__ import annotations
+
+from ..errors import ConfigError
+from .description import ArmDescription, RobotDescription
+from .baxter import BAXTER
+from .panda import PANDA
+
+PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}
+DEFAULT_ROBOT = PANDA.name
+
+
+def robot(name: str) -> RobotDescription:
+    """The preset called `name`; ConfigError listing the presets otherwise."""
+    if name not in PRESETS:
+        raise ConfigError(f"robot: unknown {name!r}; accepted {', '.join(PRESETS)}")
+    return PRESETS[name]
+
+
+__all__ = ["DEFAULT_ROBOT", "PRESETS", "ArmDescription", "RobotDescription", "robot"]

@@ -1,0 +1,80 @@
+"""What pyramid_sim needs to know of a robot, as plain values: a preset per robot.
+
+The scheduler, the primitives and the IK speak of arms as "left" and "right" and of logical
+parts (joints, tool point, fingers, pads); a description maps those to the model's own names
+and carries the real robot's limits and dimensions. Pure: no MuJoCo. The physics side
+(`physics/robots/`) builds the model a description names.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Mapping
+
+Vec3 = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class ArmDescription:
+    """One arm with its hand: model names, and the real arm's limits shoulder to wrist."""
+
+    joints: tuple[str, ...]
+    velocity_limits: tuple[float, ...]  # rad/s
+    torque_limits: tuple[float, ...]  # N m, gravity compensation included
+    acceleration_limits: tuple[float, ...]  # rad/s^2
+    kp: tuple[float, ...]  # N m/rad, the position servos
+    damping: tuple[float, ...]  # N m s/rad
+    home: tuple[float, ...]  # rad: a comfortable posture, hand down in front of the robot
+    base: Vec3  # m, where the arm stands in the world: a one-arm build is centred in front
+    root_body: str  # every body of the arm and its hand hangs below this one
+    tcp_site: str  # the tool centre point: z out of the hand, fingers closing along y
+    zone_bodies: tuple[str, ...]  # whose positions tell whether the arm is in the shared zone
+    guarded_bodies: tuple[str, ...]  # links the IK keeps off the other arm and the robot's body
+    finger_joints: tuple[str, str]
+    finger_bodies: tuple[str, str]
+    pads: tuple[str, str]  # the geoms that touch the brick
+    gripper_actuator: str
+    yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
+    # and the clear pose this yaw, so the last wrist joint stays inside its range
+
+    def __post_init__(self) -> None:
+        n = len(self.joints)
+        for name in ("velocity_limits", "torque_limits", "acceleration_limits", "kp", "damping",
+                     "home"):
+            if len(getattr(self, name)) != n:
+                raise ValueError(f"{name}: {len(getattr(self, name))} values for {n} joints")
+
+
+@dataclass(frozen=True)
+class RobotDescription:
+    """A robot preset: its two arms, its gripper's geometry and where things stand."""
+
+    name: str
+    summary: str
+    arms: Mapping[str, ArmDescription]  # "left" and "right"
+    finger_stroke: float  # m each finger travels: the real hand's joint range
+    finger_signs: tuple[int, int]  # +1 where a finger's joint opens the hand with rising value
+    closed_width: float  # m between the pads with both fingers closed (spacers or slots set it)
+    open_margin: float  # m short of its end each open finger stops: a knock then pushes it
+    # against its servo, not into its joint stop
+    grasp_height: float  # m above a brick's centre the tool point grips it
+    clear_pose: Vec3  # x, |y| and z of each arm's outer collision-clear pose, out to its side
+    static_bodies: tuple[str, ...]  # the robot's own body (torso, head): kept off by the IK
+    posture_cost: float = 1e-2  # of the IK's pull towards home: too high and it stalls short
+    max_speed: float = float("inf")  # m/s: caps the motion settings' free-move speed,
+    max_slow_speed: float = float("inf")  # their servo speed near bricks,
+    max_turn_rate: float = float("inf")  # and the hand's turn rate (rad/s)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "arms", MappingProxyType(dict(self.arms)))
+        if set(self.arms) != {"left", "right"}:
+            raise ValueError(f"arms: {sorted(self.arms)}; a preset has a left and a right arm")
+
+    def open_gap(self) -> float:
+        """The finger-gap command (both fingers' joint travel, m) that opens the hand."""
+        return 2 * (self.finger_stroke - self.open_margin)
+
+    def squeeze_gap(self, brick_width: float, force: float, stiffness: float) -> float:
+        """The gap command at which the pads press a brick `brick_width` wide with `force`."""
+        return brick_width - self.closed_width - force / stiffness
