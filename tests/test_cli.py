@@ -105,5 +105,6 @@ def test_reach_prints_the_largest_size_of_every_structure(capsys):
     assert main(["reach", "--arms", "both"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     rows = {line.split()[0]: line.split()[-1] for line in lines[1:]}
-    assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers"}
+    assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers", "corner-wall"}
     assert rows["pyramid-even"] == "5"  # the README's figure; the default 4 fits under it
+    assert int(rows["corner-wall"]) >= 5  # the seed's width
