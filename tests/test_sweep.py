@@ -197,3 +197,14 @@ def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
              for k, v in row.items()} for row in _spec_rows(config)]
     write_heatmaps(rows, config, tmp_path / "map.png")
     assert (tmp_path / "map.png").stat().st_size > 10_000
+
+
+def test_a_refused_ray_connection_says_what_to_set(monkeypatch):
+    from pyramid_sim.sweep.runner import ray_connection_advice
+
+    monkeypatch.delenv("RAY_AUTH_MODE", raising=False)
+    text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect to Ray cluster"))
+    assert "127.0.0.1:6390" in text and "set RAY_AUTH_MODE=token" in text
+    monkeypatch.setenv("RAY_AUTH_MODE", "token")
+    text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect"))
+    assert "with RAY_AUTH_MODE=token" in text and "RAY_AUTH_TOKEN" in text

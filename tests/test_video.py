@@ -51,6 +51,7 @@ def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
         (["--video", "v.mp4", "--width", "4000"], "width"),
         (["--video", "v.txt"], "mp4"),
         (["--video", "v.mp4", "--antialias", "3"], "antialias"),
+        (["--video", "v.mp4", "--speedup", "0"], "speedup"),
     ],
 )
 def test_bad_video_options_fail_before_physics(tmp_path, args, words):
@@ -102,3 +103,16 @@ def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
     assert proc.returncode == 130, err
     assert err.strip() == "pyramid-sim: interrupted"
     assert not (tmp_path / "i").exists()
+
+
+def test_speedup_films_k_simulated_seconds_a_second(tmp_path):
+    """--speedup 4 at 20 fps: a frame every 0.2 simulated seconds, a quarter of the frames."""
+    import imageio.v2 as imageio
+
+    proc = _run(["--out", "s", "--video", "s/fast.mp4", "--fps", "20", "--speedup", "4",
+                 "--width", "160", "--height", "120"], tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads((tmp_path / "s" / "result.json").read_text())
+    frames = sum(1 for _ in imageio.get_reader(tmp_path / "s" / "fast.mp4"))
+    assert abs(frames - doc["sim_time_s"] * 20 / 4) <= 1
+    assert doc["video"]["speedup"] == 4.0 and doc["video"]["frames"] == frames

@@ -176,11 +176,13 @@ class VideoConfig:
     camera: str = "overview"
     shadows: bool = False
     antialias: int = 0
+    speedup: float = 1.0  # simulated seconds shown per second of video
 
     def __post_init__(self) -> None:
         check_range("fps", self.fps, 1, 120)
         check_range("width", self.width, 16, 1920)
         check_range("height", self.height, 16, 1080)
+        check_range("speedup", self.speedup, 0.1, 100.0)
         if self.antialias not in (0, 2, 4, 8):
             raise ConfigError(f"antialias: {self.antialias} samples; accepted 0, 2, 4 or 8")
         if self.width % 2 or self.height % 2:
@@ -190,3 +192,8 @@ class VideoConfig:
             )
         if self.camera not in CAMERAS:
             raise ConfigError(f"camera: unknown {self.camera!r}; accepted {', '.join(CAMERAS)}")
+
+    @property
+    def frame_dt(self) -> float:
+        """Simulated seconds between two frames: one frame every speedup / fps."""
+        return self.speedup / self.fps

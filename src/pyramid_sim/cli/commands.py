@@ -64,8 +64,14 @@ def cmd_build(args: argparse.Namespace) -> int:
         tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
         tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
     ):
+        def placed(n: int) -> None:
+            bar.update(1)
+            # The film's length is known only at the end: estimate it from the pace so far.
+            frames.total = round(frames.n * len(plan.bricks) / n)
+            frames.refresh()
+
         result = run_build(
-            plan, config, on_placed=lambda n: bar.update(1), video=video,
+            plan, config, on_placed=placed, video=video,
             on_frame=lambda n: frames.update(1), snapshot=snapshot,
         )
         write_json_atomic(args.out / "result.json", result.to_json())

@@ -92,6 +92,7 @@ class VideoInfo:
     path: str
     frames: int
     fps: int
+    speedup: float = 1.0  # simulated seconds a second of video
 
 
 @dataclass(frozen=True)

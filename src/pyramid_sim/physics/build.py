@@ -46,7 +46,7 @@ def run_build(
     try:
         if video is not None:
             recorder = Recorder(loop.model, video[0], video[1], on_frame)
-            hooks = replace(hooks, on_frame=recorder, frame_dt=1.0 / video[0].fps)
+            hooks = replace(hooks, on_frame=recorder, frame_dt=video[0].frame_dt)
         measured = loop.run(hooks)
     except BaseException:
         if recorder is not None:
@@ -57,7 +57,8 @@ def run_build(
     result = judge(measured, config)
     if recorder is not None:
         recorder.finish()
-        result = replace(result, video=VideoInfo(str(video[1]), recorder.frames, video[0].fps))
+        vc = video[0]
+        result = replace(result, video=VideoInfo(str(video[1]), recorder.frames, vc.fps, vc.speedup))
     if still is not None and snapshot is not None:
         from ..output.video import write_still
 

@@ -7,6 +7,7 @@ are shared with the full scene, so the solution maps over by name.
 from __future__ import annotations
 
 from ctypes import c_int
+from functools import lru_cache
 
 import daqp
 import mink
@@ -57,6 +58,17 @@ class _BrakingLimit(mink.Limit):
         return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
 
 
+def arms_model(config: SimConfig) -> mujoco.MjModel:
+    """The scene without bricks, for the IK: compiled once per robot and timestep in a process
+    (the arms' kinematics do not change with the brick or grip settings a sweep varies)."""
+    return _arms_model(config.robot, config.timestep)
+
+
+@lru_cache(maxsize=4)
+def _arms_model(robot: str, timestep: float) -> mujoco.MjModel:
+    return build_spec(SimConfig(robot=robot, timestep=timestep), 0, with_bricks=False).compile()
+
+
 class DualArmIK:
     """One mink problem for both arms: a TCP frame task per arm, a light posture task, joint
     position, velocity and acceleration limits, and a minimum distance between the arms."""
@@ -71,7 +83,7 @@ class DualArmIK:
         self.damping = damping
         self.robot = robot = config.robot_spec
         arms = robot.arms
-        self.model = build_spec(config, 0, with_bricks=False).compile()
+        self.model = arms_model(config)
         self.configuration = mink.Configuration(self.model)
         self.dt = config.motion.control_dt
         self.qadr = {arm: qpos_addresses(self.model, arms[arm].joints) for arm in c.ARMS}

@@ -8,6 +8,7 @@ kills its worker, or passes the timeout becomes a failed row with its reason; th
 from __future__ import annotations
 
 import multiprocessing as mp
+import os
 import multiprocessing.connection
 import signal
 import sys
@@ -16,7 +17,7 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable
 
-from ..errors import ConfigError
+from ..errors import ConfigError, PyramidSimError
 from ..output.result import BuildResult
 from .grid import RunSpec
 from .store import KEY_COLUMNS, RESULT_FIELDS
@@ -81,9 +82,15 @@ def _die_with_parent() -> None:
             pass
 
 
+# A build is one thread of MuJoCo and small numpy arrays: BLAS pools only spin. Each worker
+# gets one BLAS thread, set before it imports numpy (a spawned process inherits the environment).
+ONE_BLAS_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
 def _worker_loop(conn: mp.connection.Connection, run: Callable[[RunSpec], RunResult]) -> None:
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when a sweep stops
+    from ..physics import build  # noqa: F401  import MuJoCo and mink once, before any run
     while True:
         try:
             spec = conn.recv()
@@ -98,7 +105,16 @@ class _Worker:
     def __init__(self, ctx: Any, run: Callable[[RunSpec], RunResult]) -> None:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_loop, args=(child, run), daemon=True)
-        self.proc.start()
+        saved = {k: os.environ.get(k) for k in ONE_BLAS_THREAD}
+        os.environ.update(ONE_BLAS_THREAD)
+        try:
+            self.proc.start()
+        finally:  # the parent keeps its own settings
+            for key, value in saved.items():
+                if value is None:
+                    os.environ.pop(key, None)
+                else:
+                    os.environ[key] = value
         child.close()
         self.spec: RunSpec | None = None
         self.started = 0.0
@@ -187,6 +203,23 @@ def require_ray() -> None:
                           "pip install -e '.[ray]'")
 
 
+def ray_connection_advice(address: str | None, err: Exception) -> str:
+    """Why a Ray cluster refused us, with what to set: clusters started with `ray start` (Ray
+    2.60 and later) ask clients for a token, and a client without `RAY_AUTH_MODE=token` only
+    hears 'Failed to connect' after about 20 s."""
+    advice = (
+        f"cannot connect to the Ray cluster at {address} ({str(err).splitlines()[0]}); "
+        "a cluster started with `ray start` wants token authentication: set RAY_AUTH_MODE=token "
+        "for the sweep (the token is in ~/.ray/auth_token where the head node was started; "
+        "elsewhere set RAY_AUTH_TOKEN to it)"
+    )
+    if os.environ.get("RAY_AUTH_MODE") == "token":
+        advice = (f"cannot connect to the Ray cluster at {address} ({str(err).splitlines()[0]}) "
+                  "with RAY_AUTH_MODE=token: check the address and that RAY_AUTH_TOKEN or "
+                  "~/.ray/auth_token holds the head node's token")
+    return advice
+
+
 def run_ray(
     specs: Iterable[RunSpec],
     workers: int,
@@ -202,10 +235,13 @@ def run_ray(
 
     started_here = not ray.is_initialized()
     if started_here:
-        ray.init(
-            address=address, num_cpus=None if address else workers, include_dashboard=False,
-            log_to_driver=False, logging_level=logging.ERROR,
-        )
+        try:
+            ray.init(
+                address=address, num_cpus=None if address else workers, include_dashboard=False,
+                log_to_driver=False, logging_level=logging.ERROR,
+            )
+        except ConnectionError as err:
+            raise PyramidSimError(ray_connection_advice(address, err)) from None
     task = ray.remote(num_cpus=1, max_retries=0)(run_one)
     pending = deque(specs)
     running: dict[Any, tuple[RunSpec, float]] = {}
