@@ -18,12 +18,12 @@ import mujoco
 import numpy as np
 
 from .config import SimConfig, VideoConfig, check_count
-from .robots import DEFAULT_ROBOT
 from .core.structures import StructureSpec
 from .output.judge import judge
 from .physics.build import prepare
 from .physics.hooks import BuildHooks
 from .physics.loop import BuildLoop
+from .robots import DEFAULT_ROBOT
 from .sweep.grid import RunSpec
 from .sweep.runner import RunResult, run_processes
 

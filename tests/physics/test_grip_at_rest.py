@@ -3,7 +3,6 @@ settings of the grip (pads' friction, condim, stiffness; the scene's elliptic co
 impratio) measured on a brick squeezed between two pads, nothing else moving."""
 
 import mujoco
-import numpy as np
 import pytest
 
 from pyramid_sim.config import GripperConfig, SimConfig

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from ..errors import ConfigError
-from .description import ArmDescription, RobotDescription
 from .baxter import BAXTER
+from .description import ArmDescription, RobotDescription
 from .panda import PANDA
 
 PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}

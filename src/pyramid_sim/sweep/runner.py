@@ -8,8 +8,8 @@ kills its worker, or passes the timeout becomes a failed row with its reason; th
 from __future__ import annotations
 
 import multiprocessing as mp
-import os
 import multiprocessing.connection
+import os
 import signal
 import sys
 import time
