@@ -121,6 +121,9 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
             raise ConfigError(f"goals: {what} is out of reach: {err}") from None
         knob = SIZE_KNOB[spec.name]
         best = checker.largest(spec, plan.arms, below=getattr(spec, knob))
+        largest = f"the largest reachable is {knob} {best}" if best else (
+            f"no {knob} of {spec.name} is within reach of the {config.robot} robot"
+        )
         raise ConfigError(
-            f"{knob}: {what} is out of reach ({err}); the largest reachable is {knob} {best}"
+            f"{knob}: {what} is out of reach ({err}); {largest}"
         ) from None
