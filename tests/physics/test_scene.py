@@ -1,4 +1,5 @@
-"""The scene compiles with what issue 2 asks for, and is stable under noisy commands."""
+"""The scene compiles with what issue 2 asks for (its stability under noisy commands is tested
+for every robot preset in test_robots.py)."""
 
 import mujoco
 import numpy as np
@@ -31,22 +32,6 @@ def test_brick_mass_and_friction_are_settable():
     assert model.body(c.brick_name(0) + "brick").mass[0] == np.float64(0.8)
     assert geom.friction[0] == 0.6
     assert geom.size.tolist() == [0.096, 0.043, 0.031]
-
-
-def test_noisy_commands_for_one_second_raise_no_warning():
-    model = build_scene(SimConfig(), 4).model
-    data = mujoco.MjData(model)
-    rng = np.random.default_rng(0)
-    handles = SceneHandles(model, PANDA, 4)
-    for arm in c.ARMS:
-        data.qpos[handles.arm_qpos[arm]] = PANDA.arms[arm].home
-    mujoco.mj_forward(model, data)
-    low, high = model.actuator_ctrlrange.T
-    for _ in range(int(1.0 / model.opt.timestep)):
-        data.ctrl[:] = np.clip(data.ctrl + rng.normal(0, 0.01, model.nu), low, high)
-        mujoco.mj_step(model, data)
-    assert all(w.number == 0 for w in data.warning)
-    assert np.all(np.isfinite(data.qpos))
 
 
 def _arm_pose(model: mujoco.MjModel, data: mujoco.MjData, arm: str, q: list[float]) -> None:
