@@ -14,6 +14,7 @@ from .params import check_range, check_section, default
 from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
+SCHEDULES = ("lockstep", "overlap")
 
 
 def check_count(name: str, value: int, low: int, high: int) -> None:
@@ -112,6 +113,7 @@ class SimConfig:
     """Everything a build needs beyond the structure itself."""
 
     robot: str = DEFAULT_ROBOT  # a preset of robots/
+    schedule: str = "lockstep"  # the seed's four phases, or "overlap" (core/overlap.py)
     brick: BrickConfig = field(default_factory=BrickConfig)
     gripper: GripperConfig = field(default_factory=GripperConfig)
     layout: LayoutConfig = field(default_factory=LayoutConfig)
@@ -126,6 +128,8 @@ class SimConfig:
 
     def __post_init__(self) -> None:
         preset = robot(self.robot)  # refuses an unknown preset, naming those there are
+        if self.schedule not in SCHEDULES:
+            raise ConfigError(f"schedule: unknown {self.schedule!r}; accepted {', '.join(SCHEDULES)}")
         m = self.motion
         capped = replace(
             m, speed=min(m.speed, preset.max_speed),

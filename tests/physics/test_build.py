@@ -157,3 +157,17 @@ def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
         assert_in_place(b)
     assert result.max_joint_speed_ratio <= 1.0
     assert {b.arm for b in result.bricks} == ({"left", "right"} if arms == "both" else {arms})
+
+
+def test_the_overlap_schedule_builds_in_order_one_arm_in_the_zone_at_a_time():
+    from dataclasses import replace
+
+    from pyramid_sim.physics.build import run_build
+
+    config = replace(SimConfig(), schedule="overlap")
+    result = run_build(prepare(StructureSpec("pyramid-even", layers=2), config), config)
+    assert result.success, result.failure_reason
+    assert result.bricks_placed == 6 and result.shared_zone_violations == 0
+    for b in result.bricks:
+        assert_in_place(b)
+    assert result.inputs.settings["schedule"] == "overlap"

@@ -36,12 +36,14 @@ def make_parser() -> a.Parser:
     build = sub.add_parser("build", help="simulate the build headless and write DIR/result.json")
     a.add_structure_args(build)
     a.add_physics_args(build)
+    a.add_schedule_arg(build)
     build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
     a.add_video_args(build)
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     a.add_structure_args(view)
     a.add_physics_args(view)
+    a.add_schedule_arg(view)
     a.add_sweep_args(sub.add_parser(
         "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and sweep.png"
     ))

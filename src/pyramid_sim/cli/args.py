@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 from typing import Callable, NoReturn, Sequence
 
-from ..config import SimConfig, VideoConfig
+from ..config import SCHEDULES, SimConfig, VideoConfig
 from ..core.plan import ARM_CHOICES
 from ..core.structures import (
     MAX_BRICKS,
@@ -91,6 +91,12 @@ def add_robot_arg(p: argparse.ArgumentParser) -> None:
                         f"default {DEFAULT_ROBOT}")
 
 
+def add_schedule_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--schedule", type=one_of("schedule", SCHEDULES), default=SCHEDULES[0],
+                   help="lockstep: the seed's four phases (default); overlap: each arm carries "
+                        "its brick straight to its place, the arms taking turns in the zone")
+
+
 def add_structure_args(p: argparse.ArgumentParser) -> None:
     add_robot_arg(p)
     names = sorted(STRUCTURES)
@@ -147,6 +153,7 @@ def add_video_args(p: argparse.ArgumentParser) -> None:
 
 def add_sweep_args(p: argparse.ArgumentParser) -> None:
     add_sweep_axes(p)
+    add_schedule_arg(p)
     add_structure_args(p)
     p.add_argument("--repeats", type=whole("repeats"), default=1,
                    help="runs a point, seeds 0, 1, ... of the spawn jitter (1 to 100, default 1)")
@@ -171,7 +178,8 @@ def config_from_args(args: argparse.Namespace) -> SimConfig:
     for param in PARAMS:
         config = param.apply(config, getattr(args, param.name))
     layout = replace(config.layout, spawn_jitter_mm=args.spawn_jitter)
-    return replace(config, layout=layout, seed=args.seed, robot=args.robot)
+    return replace(config, layout=layout, seed=args.seed, robot=args.robot,
+                   schedule=getattr(args, "schedule", SCHEDULES[0]))
 
 
 def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec:
@@ -200,7 +208,7 @@ def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
     )
     return SweepConfig(
         axes=axes, structure=spec_from_args(args, SimConfig()), arms=args.arms, repeats=args.repeats,
-        robot=args.robot,
+        robot=args.robot, schedule=args.schedule,
         spawn_jitter_mm=args.spawn_jitter, workers=args.workers, timeout=args.timeout,
         backend=args.backend, ray_address=args.ray_address,
     )

@@ -34,6 +34,7 @@ class Step:
     pose: Pose | None = None
     speed: float = 0.0
     enters_zone: bool = False  # the first step into the shared zone waits for the barrier
+    needs_brick: bool = False  # and, to pick, for a brick on the spawn spot
     transit: bool = False  # up, over and down at the higher end's height (trajectory.plan_path)
 
 
@@ -58,7 +59,7 @@ def pick_steps(
     return [
         # Back from a place above the courses: level over to the spot, then down.
         Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed,
-             enters_zone=True, transit=True),
+             enters_zone=True, transit=True, needs_brick=True),
         Step("approach", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
         Step("servo", StepKind.MOVE, grasp, motion.slow_speed),
         Step("grip", StepKind.GRIP),

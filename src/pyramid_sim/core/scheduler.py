@@ -20,6 +20,7 @@ from typing import Sequence
 class Action(str, Enum):
     PICK = "pick"
     PLACE = "place"
+    BUILD = "build"  # pick and place in one go (the overlap schedule)
     CLEAR = "clear"
     IDLE = "idle"
 

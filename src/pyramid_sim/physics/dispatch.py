@@ -10,9 +10,13 @@ from ..core.arm_runner import ArmRunner
 from ..core.plan import Plan
 from ..core.poses import Pose
 from ..core.primitives import Step, clear_steps, pick_steps, place_steps
+from ..core.overlap import OverlapScheduler
 from ..core.scheduler import Action, LockstepScheduler, Task
 from . import names as c
 from .spawner import Spawner
+
+
+SCHEDULES = {"lockstep": LockstepScheduler, "overlap": OverlapScheduler}
 
 
 class ArmDispatch:
@@ -23,7 +27,8 @@ class ArmDispatch:
     ) -> None:
         self.plan, self.config, self.spawner = plan, config, spawner
         self.robot = config.robot_spec
-        self.scheduler = LockstepScheduler(plan.arm_order("left"), plan.arm_order("right"))
+        schedule = SCHEDULES[config.schedule]
+        self.scheduler = schedule(plan.arm_order("left"), plan.arm_order("right"))
         self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap()) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
@@ -43,9 +48,7 @@ class ArmDispatch:
             return False
         if not self.scheduler.may_enter(arm):
             return True
-        task = self.task_of[arm]
-        picking = task is not None and task.action is Action.PICK
-        return picking and not self.spawner.brick_ready()
+        return step.needs_brick and not self.spawner.brick_ready()
 
     def schedule(self, now: float) -> bool:
         """Hand idle arms their next steps; True once the build is over and has settled."""
@@ -71,13 +74,15 @@ class ArmDispatch:
         motion = self.config.motion
         grasp = {"grasp_height": self.robot.grasp_height,
                  "yaw_ref": self.robot.arms[arm].yaw_reference}
-        if task.action in (Action.PICK, Action.PLACE):
+        if task.action in (Action.PICK, Action.PLACE, Action.BUILD):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
-            if task.action is Action.PICK:
-                self.runners[arm].load(pick_steps(self.plan.spawn, motion, carry_to=target, **grasp))
-            else:
-                self.runners[arm].load(place_steps(target, motion, **grasp))
+            steps = []
+            if task.action in (Action.PICK, Action.BUILD):
+                steps += pick_steps(self.plan.spawn, motion, carry_to=target, **grasp)
+            if task.action in (Action.PLACE, Action.BUILD):
+                steps += place_steps(target, motion, **grasp)
+            self.runners[arm].load(steps)
         elif task.action is Action.CLEAR:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))
         self.task_of[arm] = task

@@ -116,8 +116,8 @@ class BuildLoop:
     def _on_step_done(self, arm: str, step: Step, task: Task | None) -> None:
         self.last_progress = self.data.time
         kind = step.kind
-        picking = task is not None and task.action is Action.PICK
-        if kind is StepKind.MOVE and step.name == "servo" and picking:
+        picking = task is not None and task.action in (Action.PICK, Action.BUILD)
+        if kind is StepKind.MOVE and step.name == "servo" and picking and not self.custody.carry[arm]:
             if self.spawner.current is not None:  # the fingers are around it: handled now
                 self.custody.reached(self.spawner.current)
         elif kind is StepKind.GRIP:

@@ -32,7 +32,8 @@ def stall_reason(loop: BuildLoop) -> str:
     cause = f"{' and '.join(moving)} arm not reaching its target" if moving else "arms idle"
     for a in (a for a in c.ARMS if runners[a].busy and dispatch.held(a)):
         task = dispatch.task_of[a]
-        if task is not None and task.action is Action.PICK and dispatch.scheduler.may_enter(a):
+        picking = task is not None and task.action in (Action.PICK, Action.BUILD)
+        if picking and dispatch.scheduler.may_enter(a):
             cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
         else:
             cause = f"{a} arm waiting for the shared zone"

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from ..config import SimConfig
+from ..config import SCHEDULES, SimConfig
 from ..core.plan import ARM_CHOICES
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
@@ -83,9 +83,10 @@ class RunSpec:
     seed: int
     spawn_jitter_mm: float
     robot: str = DEFAULT_ROBOT
+    schedule: str = SCHEDULES[0]
 
     def config(self, base: SimConfig | None = None) -> SimConfig:
-        config = replace(base or SimConfig(), robot=self.robot)
+        config = replace(base or SimConfig(), robot=self.robot, schedule=self.schedule)
         for name, value in self.params:
             config = param(name).apply(config, value)
         layout = replace(config.layout, spawn_jitter_mm=self.spawn_jitter_mm)
@@ -95,6 +96,7 @@ class RunSpec:
         """The run's identity as the CSV spells it (see sweep_store.KEY_COLUMNS)."""
         return (
             self.robot,
+            self.schedule,
             self.structure.name,
             self.structure.size_text(),
             self.arms,
@@ -118,9 +120,10 @@ class SweepConfig:
     backend: str = "process"
     ray_address: str | None = None
     robot: str = DEFAULT_ROBOT
+    schedule: str = SCHEDULES[0]
 
     def __post_init__(self) -> None:
-        SimConfig(robot=self.robot)  # an unknown robot: one line naming the presets
+        SimConfig(robot=self.robot, schedule=self.schedule)  # unknown: one line naming those known
         if self.arms not in ARM_CHOICES:
             raise ConfigError(f"arms: unknown {self.arms!r}; accepted {', '.join(ARM_CHOICES)}")
         check_range("repeats", self.repeats, 1, 100)
@@ -157,7 +160,8 @@ class SweepConfig:
         for axis in self.full_axes():
             points = [p + ((axis.name, v),) for p in points for v in axis.values]
         return [
-            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot)
+            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot,
+                    self.schedule)
             for p in points
             for seed in range(self.repeats)
         ]

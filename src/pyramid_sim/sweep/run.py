@@ -18,7 +18,7 @@ def run_file_name(result: RunResult) -> str:
     params = "_".join(f"{n}={value_text(v)}" for n, v in spec.params)
     size = spec.structure.size_text().replace(" ", "_").replace(":", "-")
     return (
-        f"{spec.robot}_{spec.structure.name}_{size}_{spec.arms}_{params}"
+        f"{spec.robot}_{spec.schedule}_{spec.structure.name}_{size}_{spec.arms}_{params}"
         f"_jitter={spec.spawn_jitter_mm:g}"
         f"_seed={spec.seed}.json"
     )

@@ -17,7 +17,7 @@ from typing import Any
 from ..errors import ConfigError
 from ..params import PARAMS
 
-KEY_COLUMNS = ("robot", "structure", "size", "arms", *(p.name for p in PARAMS), "spawn_jitter_mm", "seed")
+KEY_COLUMNS = ("robot", "schedule", "structure", "size", "arms", *(p.name for p in PARAMS), "spawn_jitter_mm", "seed")
 # BuildResult fields copied into each row, then the run's own wall time and failure reason.
 RESULT_FIELDS = (
     "success", "bricks_placed", "bricks_total", "drops", "max_slip_mm", "worst_error_xy_mm",
