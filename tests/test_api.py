@@ -13,6 +13,13 @@ def test_plan_takes_a_structure_its_size_and_settings():
     assert len(plan.bricks) == 5 and {b.arm for b in plan.bricks} == {"left"}
 
 
+def test_robot_and_schedule_are_settings():
+    config = pyramid_sim.settings(robot="baxter", schedule="overlap", seed=4)
+    assert (config.robot, config.schedule, config.seed) == ("baxter", "overlap", 4)
+    with pytest.raises(pyramid_sim.ConfigError, match="schedule: unknown 'fast'"):
+        pyramid_sim.settings(schedule="fast")
+
+
 def test_every_table_parameter_is_a_setting():
     for p in PARAMS:
         value = (p.low + p.high) / 2

@@ -5,7 +5,7 @@
     result.success, result.bricks_placed, [b.error_xy_mm for b in result.bricks]
 
 Settings are keywords: the parameter table's names (friction, brick_mass, grip_force,
-pad_friction), spawn_jitter_mm and seed, or a whole `config=SimConfig(...)`. Everything is
+pad_friction), spawn_jitter_mm, seed, robot and schedule, or a whole `config=SimConfig(...)`. Everything is
 validated before any physics runs; a bad value raises ConfigError naming its accepted range.
 """
 
@@ -22,7 +22,7 @@ from .errors import ConfigError
 from .output.result import BuildResult
 from .params import BY_NAME
 
-RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot")
+RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot", "schedule")
 
 
 def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
@@ -34,7 +34,7 @@ def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
             config = BY_NAME[name].apply(config, value)
         elif name == "spawn_jitter_mm":
             config = replace(config, layout=replace(config.layout, spawn_jitter_mm=value))
-        elif name in ("seed", "robot"):
+        elif name in ("seed", "robot", "schedule"):
             config = replace(config, **{name: value})
         else:
             accepted = ", ".join([*BY_NAME, *RUN_SETTINGS, "config"])
