@@ -30,13 +30,18 @@ def _robot_contacts(model: mujoco.MjModel, data: mujoco.MjData) -> list[tuple[st
     return pairs
 
 
+def _scene(name: str, bricks: int):
+    """A preset's compiled scene, fresh data and handles."""
+    config = SimConfig(robot=name)
+    model = build_scene(config, bricks).model
+    return config, config.robot_spec, model, mujoco.MjData(model), SceneHandles(
+        model, config.robot_spec, bricks
+    )
+
+
 @pytest.mark.parametrize("name", ROBOTS)
 def test_a_preset_has_no_self_contact_at_home_or_at_its_clear_poses(name):
-    config = SimConfig(robot=name)
-    robot = config.robot_spec
-    model = build_scene(config, 2).model
-    data = mujoco.MjData(model)
-    handles = SceneHandles(model, robot, 2)
+    config, robot, model, data, handles = _scene(name, 2)
     ik = DualArmIK(config, limit_acceleration=False)
     clear = {a: ik.solve(a, clear_pose(a, robot)) for a in c.ARMS}
     for pose in ({a: robot.arms[a].home for a in c.ARMS}, clear):
@@ -49,11 +54,7 @@ def test_a_preset_has_no_self_contact_at_home_or_at_its_clear_poses(name):
 @pytest.mark.parametrize("name", ROBOTS)
 def test_the_pads_close_to_the_width_the_preset_says(name):
     """The model's own geometry, fingers closed and fully open, against the description."""
-    config = SimConfig(robot=name)
-    robot = config.robot_spec
-    model = build_scene(config, 1).model
-    data = mujoco.MjData(model)
-    handles = SceneHandles(model, robot, 1)
+    _, robot, model, data, handles = _scene(name, 1)
     arm = robot.arms["left"]
     widths = []
     for travel in (0.0, robot.finger_stroke):
@@ -70,15 +71,11 @@ def test_the_pads_close_to_the_width_the_preset_says(name):
 
 @pytest.mark.parametrize("name", ROBOTS)
 def test_a_noisy_second_raises_no_warning(name):
-    config = SimConfig(robot=name)
-    model = build_scene(config, 4).model
-    data = mujoco.MjData(model)
-    handles = SceneHandles(model, config.robot_spec, 4)
-    for arm in c.ARMS:
-        data.qpos[handles.arm_qpos[arm]] = config.robot_spec.arms[arm].home
+    _, robot, model, data, handles = _scene(name, 4)
     data.ctrl[:] = 0.0
     for arm in c.ARMS:
-        data.ctrl[handles.arm_actuators[arm]] = config.robot_spec.arms[arm].home
+        data.qpos[handles.arm_qpos[arm]] = robot.arms[arm].home
+        data.ctrl[handles.arm_actuators[arm]] = robot.arms[arm].home
     mujoco.mj_forward(model, data)
     rng = np.random.default_rng(0)
     low, high = model.actuator_ctrlrange.T
