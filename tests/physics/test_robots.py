@@ -103,3 +103,21 @@ def test_baxter_builds_the_even_pyramid_of_two_layers():
         assert math.hypot(x - tx, y - ty) < 0.005 and abs(z - tz) < 0.003, b
     assert result.arm_arm_contacts == 0 and result.arm_body_contacts == 0
     assert result.max_joint_torque_ratio <= 1.0 and result.drops == 0
+
+
+def test_an_arm_against_its_own_robot_is_counted():
+    """Baxter's left arm folded into its head padding: the monitor counts contacts with the
+    robot's body (a check of success), and none between the arms."""
+    from pyramid_sim.physics.monitor import StepMonitor, joint_limits
+
+    _, robot, model, data, handles = _scene("baxter", 1)
+    data.qpos[handles.arm_qpos["left"]] = [-0.31, -0.39, -2.89, 1.96, 0.23, -0.36, 1.76]
+    data.qpos[handles.arm_qpos["right"]] = robot.arms["right"].home
+    mujoco.mj_forward(model, data)
+    arms = lambda part: np.concatenate([part[a] for a in c.ARMS])  # noqa: E731
+    monitor = StepMonitor(model, data, arms(handles.arm_dofs), arms(handles.arm_qpos),
+                          arms(handles.arm_actuators), arms(handles.finger_qpos),
+                          joint_limits(model, robot))
+    monitor.record()
+    monitor.flush()
+    assert monitor.arm_body_contacts > 0 and monitor.arm_arm_contacts == 0
