@@ -7,14 +7,13 @@ from typing import Callable
 
 from ..config import SimConfig
 from ..core.arm_runner import ArmRunner
+from ..core.overlap import OverlapScheduler
 from ..core.plan import Plan
 from ..core.poses import Pose
 from ..core.primitives import Step, clear_steps, pick_steps, place_steps
-from ..core.overlap import OverlapScheduler
 from ..core.scheduler import Action, LockstepScheduler, Task
 from . import names as c
 from .spawner import Spawner
-
 
 SCHEDULES = {"lockstep": LockstepScheduler, "overlap": OverlapScheduler}
 

@@ -28,7 +28,7 @@ from ...config import SimConfig
 from ...resources import ASSETS
 from ...robots import ArmDescription, RobotDescription
 from ...robots.baxter import PREFIX
-from .common import add_gripper_servo, add_servos, local, tune_pads
+from .common import add_gripper_servo, add_servos, local, tune_finger, tune_pads
 
 HERE = ASSETS / "robots" / "baxter"
 MESH_URL = r"package://example-robot-data/robots/baxter_description/meshes/([^\"]+)\.DAE"
@@ -68,8 +68,7 @@ def _fit_gripper(spec: mujoco.MjSpec, side: str, arm: ArmDescription) -> None:
         body = spec.body(f"{g}_gripper_{finger}_finger")
         body.pos = [body.pos[0], sign * SLOT_4, body.pos[2]]
         joint = spec.joint(local(joint_name))
-        joint.damping = [2.0, 0.0, 0.0]
-        joint.armature = 0.01
+        tune_finger(joint)
         tip = spec.body(f"{g}_gripper_{finger}_finger_tip")
         pad = next(geo for geo in tip.geoms if geo.contype or geo.conaffinity)
         pad.name = local(arm.pads[0 if finger == "l" else 1])

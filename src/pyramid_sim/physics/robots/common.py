@@ -18,6 +18,12 @@ PAD_SOLIMP = (0.99, 0.999, 0.0005, 0.5, 2.0)
 GRIPPER_DAMPING = 40.0  # N s/m of the gripper servo
 
 
+def tune_finger(joint: mujoco.MjsJoint) -> None:
+    """A finger joint's damping and armature, the same on every hand."""
+    joint.damping = [2.0, 0.0, 0.0]
+    joint.armature = 0.01
+
+
 @lru_cache(maxsize=1)
 def robots_dir() -> Path:
     """example-robot-data's robots folder (its Python module needs pinocchio: not used)."""
@@ -30,16 +36,16 @@ def local(name: str) -> str:
     return name.split("/", 1)[-1]
 
 
-def add_servos(spec: mujoco.MjSpec, arm: ArmDescription, armature: float, names=local) -> None:
+def add_servos(spec: mujoco.MjSpec, arm: ArmDescription, armature: float) -> None:
     """A position servo per arm joint, named as the joint, with the arm's gains and torque
     limits; gravity compensation is the servo's work (actuatorgravcomp), so it counts against
     the same limit instead of being a free torque."""
     for joint_name, kp, damping, torque in zip(arm.joints, arm.kp, arm.damping, arm.torque_limits):
-        joint = spec.joint(names(joint_name))
+        joint = spec.joint(local(joint_name))
         joint.armature = armature
         joint.damping = [damping, 0.0, 0.0]
         act = spec.add_actuator(
-            name=names(joint_name), target=names(joint_name), trntype=mujoco.mjtTrn.mjTRN_JOINT
+            name=local(joint_name), target=local(joint_name), trntype=mujoco.mjtTrn.mjTRN_JOINT
         )
         act.set_to_position(kp=kp, kv=0.0)
         act.ctrlrange = joint.range
@@ -64,17 +70,16 @@ def tune_pads(spec: mujoco.MjSpec, pads: list[mujoco.MjsGeom], grip: GripperConf
 
 
 def add_gripper_servo(
-    spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription, grip: GripperConfig,
-    names=local,
+    spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription, grip: GripperConfig
 ) -> None:
     """One servo on a tendon summing both fingers' opening travel (command = finger gap less
     the closed width), force-limited to the grip force, stiff enough that any command short of
     the brick saturates at that limit."""
-    tendon = spec.add_tendon(name=names(arm.gripper_actuator) + "_gap")
+    tendon = spec.add_tendon(name=local(arm.gripper_actuator) + "_gap")
     for joint_name, sign in zip(arm.finger_joints, robot.finger_signs):
-        tendon.wrap_joint(names(joint_name), float(sign))
+        tendon.wrap_joint(local(joint_name), float(sign))
     act = spec.add_actuator(
-        name=names(arm.gripper_actuator), target=names(arm.gripper_actuator) + "_gap",
+        name=local(arm.gripper_actuator), target=local(arm.gripper_actuator) + "_gap",
         trntype=mujoco.mjtTrn.mjTRN_TENDON,
     )
     act.set_to_position(kp=grip.stiffness, kv=GRIPPER_DAMPING)

@@ -19,7 +19,14 @@ import numpy as np
 
 from ...config import SimConfig
 from ...robots import ArmDescription, RobotDescription
-from .common import add_gripper_servo, add_servos, local, robots_dir, tune_pads
+from .common import (
+    add_gripper_servo,
+    add_servos,
+    local,
+    robots_dir,
+    tune_finger,
+    tune_pads,
+)
 
 ARMATURE = 0.1
 PEDESTAL = (0.11, 0.3355)  # m, radius and half height: from the floor to the base
@@ -55,8 +62,7 @@ def _fit_fingers(spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescripti
     for joint_name, body_name, pad_name in zip(arm.finger_joints, arm.finger_bodies, arm.pads):
         joint = spec.joint(local(joint_name))
         joint.range = [0.0, robot.finger_stroke]
-        joint.damping = [2.0, 0.0, 0.0]
-        joint.armature = 0.01
+        tune_finger(joint)
         body = spec.body(local(body_name))
         body.pos = np.array(body.pos) + spacer * np.array(joint.axis)
         body.geoms[3].name = local(pad_name)  # the URDF's "rubber tip with which to grasp"
