@@ -6,6 +6,7 @@ are shared with the full scene, so the solution maps over by name.
 
 from __future__ import annotations
 
+import math
 from ctypes import c_int
 from functools import lru_cache
 
@@ -20,42 +21,16 @@ from ..errors import UnreachableError
 from . import names as c
 from .clearance import arm_geoms, colliding_geoms
 from .handles import dof_addresses, qpos_addresses
+from .ik_qp import NO_BOUND, BrakingCollisionLimit, IKProblem
 from .scene import build_spec
 
-# mink builds the QP; daqp solves it, called directly: qpsolvers' generic wrapper around it cost
-# a sixth of a solve.
-NO_LOWER_BOUND = -1e30
-COLLISION_LOOKAHEAD = 0.10  # m beyond the minimum arm distance at which the limit takes effect
-ARM_BRAKING = 4.0  # m/s^2: the arms may close on each other no faster than they can stop in time
+# mink gives the QP's terms (see ik_qp); daqp solves it, called directly: qpsolvers' generic
+# wrapper around it cost a sixth of a solve.
 VELOCITY_MARGIN = 0.9
 # Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
 # for the whole error every 10 ms; against the acceleration bound that over-corrects and rings
 # (an arm reaching across to the far side rang +-20 mm over the spawn spot); 0.5 settles.
 FRAME_GAIN = 0.5
-
-
-class _BrakingLimit(mink.Limit):
-    """mink's collision avoidance limit, reshaped so the arms can always stop in time.
-
-    mink bounds each step's approach by a share of the gap left (gain x gap / dt), which allows
-    full speed until just short of the minimum and then an instant stop; the arm's
-    acceleration bounds cannot follow (with both hands sent to one point, and the velocity
-    clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
-    is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
-    modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart; mink's own bound, with
-    the acceleration bounds in the QP, 43.5 mm)."""
-
-    def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
-        # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
-        self.limit = mink.CollisionAvoidanceLimit(
-            model, pairs, gain=1.0, minimum_distance_from_collisions=minimum,
-            collision_detection_distance=minimum + COLLISION_LOOKAHEAD,
-        )
-
-    def compute_qp_inequalities(self, configuration: mink.Configuration, dt: float):
-        constraint = self.limit.compute_qp_inequalities(configuration, 1.0)
-        gap = np.maximum(constraint.h, 0.0)
-        return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
 
 
 def arms_model(config: SimConfig) -> mujoco.MjModel:
@@ -112,20 +87,25 @@ class DualArmIK:
         if robot.static_bodies:  # and each arm off the robot's own body (torso, head)
             body = colliding_geoms(self.model, {self.model.body(b).id for b in robot.static_bodies})
             pairs += [(arm, body) for arm in guarded]
-        self.limits = [
-            mink.ConfigurationLimit(self.model),
-            mink.VelocityLimit(self.model, velocities),
-            # Collision safety beyond the scheduler: the QP will not close the gap between the
-            # arms' links below the minimum distance, whatever the targets ask.
-            _BrakingLimit(self.model, pairs, config.motion.arm_min_distance),
-        ]
-        self._collision_rows = self.limits[-1].limit.max_num_contacts  # the QP's last rows
+        position_limit = mink.ConfigurationLimit(self.model)
+        velocity_limit = mink.VelocityLimit(self.model, velocities)
+        # Collision safety beyond the scheduler: the QP will not close the gap between the
+        # arms' links below the minimum distance, whatever the targets ask.
+        self._collision = BrakingCollisionLimit(self.model, pairs, config.motion.arm_min_distance)
+        self.limits = [position_limit, velocity_limit, self._collision]  # as mink takes them
         self.max_dv = np.full(self.model.nv, np.inf)
         if limit_acceleration:
             for arm in c.ARMS:
                 dofs = dof_addresses(self.model, arms[arm].joints)
                 self.max_dv[dofs] = np.array(arms[arm].acceleration_limits) * self.dt
-        self._task_list = [*self.tasks.values(), self.posture]
+        self._max_ddq = self.max_dv * self.dt  # the change of a step dq from one to the next
+        rows = self._collision.limit.max_num_contacts
+        self._free = np.full(rows, -NO_BOUND)  # the collision rows' lower bounds
+        self._sense = np.zeros(self.model.nv + rows, dtype=c_int)
+        self.task_list = [*self.tasks.values(), self.posture]
+        self.problem = IKProblem(
+            self.configuration, self.task_list, damping, position_limit, velocity_limit, self.dt
+        )
         self._targets: dict[str, Pose] = {}
         self.velocity = np.zeros(self.model.nv)
         joint_ids = [self.model.joint(j).id for a in c.ARMS for j in arms[a].joints]
@@ -190,7 +170,7 @@ class DualArmIK:
         self.configuration.update(q_next)
 
     def _solve(self) -> np.ndarray:
-        """Joint velocities from mink's QP for the tasks and limits.
+        """Joint velocities from the QP of mink's tasks and limits (`IKProblem`).
 
         Each joint's change of velocity is bounded by its acceleration limit inside the QP, so
         a stop short of the other arm is planned within what the arm can do. When that makes
@@ -198,34 +178,32 @@ class DualArmIK:
         it is solved without the bounds and its answer clipped to them, unless the clipped
         answer would close on the other arm: then the collision limit wins over smoothness.
         NoSolutionFound if the QP has no solution even so."""
-        problem = mink.build_ik(
-            self.configuration, self._task_list, self.dt, self.damping, self.limits
-        )
-        G, h = problem.G, problem.h
-        free = np.full(h.size, NO_LOWER_BOUND)
-        low = np.maximum((self.velocity - self.max_dv) * self.dt, NO_LOWER_BOUND)
-        high = np.minimum((self.velocity + self.max_dv) * self.dt, -NO_LOWER_BOUND)
+        H, c = self.problem.objective()
+        low, high = self.problem.bounds()
+        G, h = self._collision.active_rows(self.configuration, self.dt)
+        free, sense = self._free[: h.size], self._sense[: h.size + low.size]
+        last = self.velocity * self.dt
+        accel_low, accel_high = last - self._max_ddq, last + self._max_ddq
         step, _, exitflag, _ = daqp.solve(
-            problem.P, problem.q, G, np.concatenate([high, h]), np.concatenate([low, free]),
-            np.zeros(h.size + low.size, dtype=c_int),
+            H, c, G, np.concatenate([np.minimum(high, accel_high), h]),
+            np.concatenate([np.maximum(low, accel_low), free]), sense,
         )
         if exitflag > 0:
             return step / self.dt
         step, _, exitflag, _ = daqp.solve(
-            problem.P, problem.q, G, h, free, np.zeros(h.size, dtype=c_int)
+            H, c, G, np.concatenate([high, h]), np.concatenate([low, free]), sense
         )
         if exitflag <= 0:
             raise mink.NoSolutionFound("daqp")
-        clipped = np.clip(step, low, high)
-        rows = slice(h.size - self._collision_rows, h.size)
-        if np.all(G[rows] @ clipped <= h[rows] + 1e-9):
+        clipped = np.clip(step, accel_low, accel_high)
+        if np.all(G @ clipped <= h + 1e-9):
             return clipped / self.dt
         return step / self.dt
 
     def error(self, arm: str) -> tuple[float, float]:
         """Position (m) and orientation (rad) error of the arm's frame task."""
         err = self.tasks[arm].compute_error(self.configuration)
-        return float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:]))
+        return math.sqrt(err[:3] @ err[:3]), math.sqrt(err[3:] @ err[3:])
 
     def solve(self, arm: str, pose: Pose, max_steps: int = 1500, tol: float = 1e-3) -> np.ndarray:
         """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""

@@ -1,0 +1,131 @@
+"""The IK's quadratic program, assembled from mink's tasks and limits without mink's general
+path, which costs more than the physics step it drives.
+
+mink stays the source of every term: the objective stacks the tasks' own weighted residuals as
+`mink.build_ik` does (a posture task's Jacobian, the identity, is taken once); the joint
+position and velocity limits, whose rows are plus and minus unit vectors, become the solver's
+box bounds (with the acceleration bounds, one pair per joint); and the collision limit gives
+only the rows of the pairs within its detection distance, none while the arms are apart. The
+QP has the same terms as mink's (tests/physics/test_ik_qp.py holds each to `mink.build_ik`'s).
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import mink
+import mujoco
+import numpy as np
+
+from .pair_gaps import PairGaps
+
+NO_BOUND = 1e30  # what daqp takes for an absent bound
+COLLISION_LOOKAHEAD = 0.10  # m beyond the minimum arm distance at which the limit takes effect
+ARM_BRAKING = 4.0  # m/s^2: the arms may close on each other no faster than they can stop in time
+
+
+class IKProblem:
+    """The objective and bounds of one control step's QP, in the step `dq = v dt`."""
+
+    def __init__(
+        self,
+        configuration: mink.Configuration,
+        tasks: Sequence[mink.Task],
+        damping: float,
+        position_limit: mink.ConfigurationLimit,
+        velocity_limit: mink.VelocityLimit,
+        dt: float,
+    ) -> None:
+        self.configuration = configuration
+        self.nv = nv = configuration.model.nv
+        self._moving = [t for t in tasks if not isinstance(t, mink.PostureTask)]
+        # A posture task's Jacobian is constant: its weighted rows and their part of H once.
+        self._postures = [
+            (t, t.cost[:, None] * t.compute_jacobian(configuration))
+            for t in tasks if isinstance(t, mink.PostureTask)
+        ]
+        self._H0 = sum((wj.T @ wj for _, wj in self._postures), np.zeros((nv, nv)))
+        self._H0.flat[:: nv + 1] += damping
+        self._position = position_limit
+        # mink bounds each listed dof: -dt v_max <= dq <= dt v_max.
+        self._velocity_low = np.full(nv, -NO_BOUND)
+        self._velocity_high = np.full(nv, NO_BOUND)
+        if velocity_limit.projection_matrix is not None:
+            self._velocity_high[velocity_limit.indices] = dt * velocity_limit.limit
+            self._velocity_low[velocity_limit.indices] = -dt * velocity_limit.limit
+        self._to_upper = np.empty(nv)
+        self._from_lower = np.empty(nv)
+
+    def objective(self) -> tuple[np.ndarray, np.ndarray]:
+        """(H, c) of `1/2 dq'H dq + c'dq`: the tasks' weighted residuals stacked, plus the
+        damping and each task's Levenberg-Marquardt term on the diagonal (mink's sum)."""
+        configuration = self.configuration
+        jacobians, errors, mu = [], [], 0.0
+        for task in self._moving:
+            jacobian, error, task_mu = task.compute_qp_residual(configuration)
+            jacobians.append(jacobian)
+            errors.append(error)
+            mu += task_mu
+        W = np.vstack(jacobians)
+        H = W.T @ W + self._H0
+        c = -(np.concatenate(errors) @ W)
+        for task, wj in self._postures:
+            error = task.cost * (-task.gain * task.compute_error(configuration))
+            c -= error @ wj
+            mu += task.lm_damping * float(error @ error)
+        H.flat[:: self.nv + 1] += mu
+        return H, c
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) on dq from the position limit (its gain times the way left to each end)
+        and the velocity limit; unbounded dofs get +-NO_BOUND."""
+        low, high = self._velocity_low.copy(), self._velocity_high.copy()
+        limit = self._position
+        if limit.projection_matrix is None:
+            return low, high
+        q, m = self.configuration.q, limit.model
+        mujoco.mj_differentiatePos(m, self._to_upper, 1.0, q, limit.upper)
+        mujoco.mj_differentiatePos(m, self._from_lower, 1.0, limit.lower, q)
+        dofs = limit.indices
+        high[dofs] = np.minimum(high[dofs], limit.gain * self._to_upper[dofs])
+        low[dofs] = np.maximum(low[dofs], -limit.gain * self._from_lower[dofs])
+        return low, high
+
+
+class BrakingCollisionLimit(mink.Limit):
+    """mink's collision avoidance limit, reshaped so the arms can always stop in time.
+
+    mink bounds each step's approach by a share of the gap left (gain x gap / dt), which allows
+    full speed until just short of the minimum and then an instant stop; the arm's
+    acceleration bounds cannot follow (with both hands sent to one point, and the velocity
+    clipped to those bounds after the QP, the links met 50-80 mm deep). Here the approach speed
+    is bounded by sqrt(2 a gap), the speed from which the arms stop within the gap braking at a
+    modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart; mink's own bound, with
+    the acceleration bounds in the QP, 43.5 mm)."""
+
+    def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
+        # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
+        self.limit = mink.CollisionAvoidanceLimit(
+            model, pairs, gain=1.0, minimum_distance_from_collisions=minimum,
+            collision_detection_distance=minimum + COLLISION_LOOKAHEAD,
+        )
+        geoms = np.array(self.limit.geom_id_pairs, dtype=int).reshape(-1, 2)
+        self.gaps = PairGaps(model, geoms[:, 0], geoms[:, 1])
+        self._no_rows = (np.zeros((0, model.nv)), np.zeros(0))
+
+    def compute_qp_inequalities(self, configuration: mink.Configuration, dt: float):
+        constraint = self.limit.compute_qp_inequalities(configuration, 1.0)
+        gap = np.maximum(constraint.h, 0.0)
+        return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
+
+    def active_rows(
+        self, configuration: mink.Configuration, dt: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The rows of `G dq <= h` that bind anything: none while every pair is surely beyond
+        the detection distance (mink measures no pair farther), else mink's rows without those
+        it marks with an infinite bound."""
+        if not self.gaps.may_be_within(configuration.data, self.limit.collision_detection_distance):
+            return self._no_rows
+        constraint = self.compute_qp_inequalities(configuration, dt)
+        keep = np.isfinite(constraint.h)
+        return constraint.G[keep], constraint.h[keep]
