@@ -82,22 +82,15 @@ class DualArmIK:
             for arm in c.ARMS
             for j, v in zip(arms[arm].joints, arms[arm].velocity_limits)
         }
-        guarded = [arm_geoms(self.model, arms[arm], arms[arm].guarded_bodies) for arm in c.ARMS]
-        pairs = [tuple(guarded)]
-        if robot.static_bodies:  # and each arm off the robot's own body (torso, head)
-            body = colliding_geoms(self.model, {self.model.body(b).id for b in robot.static_bodies})
-            pairs += [(arm, body) for arm in guarded]
         position_limit = mink.ConfigurationLimit(self.model)
         velocity_limit = mink.VelocityLimit(self.model, velocities)
         # Collision safety beyond the scheduler: the QP will not close the gap between the
         # arms' links below the minimum distance, whatever the targets ask.
-        self._collision = BrakingCollisionLimit(self.model, pairs, config.motion.arm_min_distance)
+        self._collision = BrakingCollisionLimit(
+            self.model, self._guarded_pairs(), config.motion.arm_min_distance
+        )
         self.limits = [position_limit, velocity_limit, self._collision]  # as mink takes them
-        self.max_dv = np.full(self.model.nv, np.inf)
-        if limit_acceleration:
-            for arm in c.ARMS:
-                dofs = dof_addresses(self.model, arms[arm].joints)
-                self.max_dv[dofs] = np.array(arms[arm].acceleration_limits) * self.dt
+        self.max_dv = self._velocity_change(limit_acceleration)
         self._max_ddq = self.max_dv * self.dt  # the change of a step dq from one to the next
         rows = self._collision.limit.max_num_contacts
         self._free = np.full(rows, -NO_BOUND)  # the collision rows' lower bounds
@@ -112,6 +105,26 @@ class DualArmIK:
         self.limited_q = self.model.jnt_qposadr[joint_ids]
         self.q_low, self.q_high = self.model.jnt_range[joint_ids].T
         self.reset_home()
+
+    def _velocity_change(self, limited: bool) -> np.ndarray:
+        """The most each dof's velocity may change in one step: its acceleration limit times
+        dt (unbounded for the fingers, or everywhere if not `limited`)."""
+        max_dv = np.full(self.model.nv, np.inf)
+        for arm in c.ARMS if limited else ():
+            dofs = dof_addresses(self.model, self.robot.arms[arm].joints)
+            max_dv[dofs] = np.array(self.robot.arms[arm].acceleration_limits) * self.dt
+        return max_dv
+
+    def _guarded_pairs(self) -> list[tuple[list[int], list[int]]]:
+        """The geom groups the IK keeps apart: the arms' guarded links from each other, and
+        from the robot's own body (torso, head) if it has one."""
+        arms, model = self.robot.arms, self.model
+        guarded = [arm_geoms(model, arms[arm], arms[arm].guarded_bodies) for arm in c.ARMS]
+        pairs = [(guarded[0], guarded[1])]
+        if self.robot.static_bodies:
+            body = colliding_geoms(model, {model.body(b).id for b in self.robot.static_bodies})
+            pairs += [(arm, body) for arm in guarded]
+        return pairs
 
     def home(self, arm: str) -> np.ndarray:
         return np.array(self.robot.arms[arm].home)
