@@ -80,8 +80,9 @@ def test_collision_rows_are_minks_binding_rows_and_none_when_apart():
 def test_the_qp_solution_is_minks():
     """The whole step against mink's QP solved by the same solver (acceleration bounds off,
     as mink has none)."""
-    import daqp
     from ctypes import c_int
+
+    import daqp
 
     rng = np.random.default_rng(5)
     for _ in range(5):
