@@ -43,7 +43,7 @@ def test_a_clean_build_passes_every_check():
         ({"slip_mm": {0: 5.5}}, "slip", "slid 5.5 mm in the hand, over the 5 mm limit"),
         ({"arm_arm_contacts": 2}, "arm_arm_contacts", "2 arm-arm contacts"),
         ({"arm_body_contacts": 1}, "arm_body_contacts", "1 contacts of an arm with the robot's"),
-        ({"zone_violations": 4}, "shared_zone", "both arms in the shared zone"),
+        ({"zone_violations": 4}, "shared_zone", "both arms in one zone"),
         ({"joint_speed_ratio": 1.02}, "joint_speed", "1.02 of its velocity limit"),
         ({"joint_torque_ratio": 1.19}, "joint_torque", "arm joint 3 demanded 1.19"),
         ({"finger_limit_mm": 3.0}, "finger_range", "3.00 mm past its joint range"),

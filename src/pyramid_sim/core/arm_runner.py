@@ -58,6 +58,11 @@ class ArmRunner:
         self.steps = list(steps)
         self._start_step()
 
+    def cut_short(self) -> None:
+        """Drop the current step where it is: the next starts from the pose commanded now."""
+        self.steps.pop(0)
+        self._start_step()
+
     def _start_step(self) -> None:
         self._t = 0.0
         self._segment = None

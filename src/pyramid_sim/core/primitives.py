@@ -10,10 +10,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import Sequence
 
 from ..config import MotionConfig
 from ..robots import RobotDescription
 from .poses import Pose, grasp_yaw
+from .zone import Zone, segment_gap
 
 # Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
 YAW_REFERENCE = 0.0
@@ -89,6 +91,24 @@ def clear_pose(arm: str, robot: RobotDescription) -> Pose:
     """The arm's outer collision-clear pose, out to its own side."""
     x, y, z = robot.clear_pose
     return Pose(x, y if arm == "left" else -y, z, robot.arms[arm].yaw_reference)
+
+
+def standby_step(
+    arm: str, zones: Sequence[Zone], x: float, at: Pose, motion: MotionConfig, clearance: float,
+    bricks: Sequence[Pose] = (), reach: float = 0.0,
+) -> Step:
+    """A move to wait at `x`, just outside every zone across that line on the arm's own side,
+    level with `at` (the pose the arm goes on to): the overlap schedule's waiting place. It is
+    raised to hover over any of `bricks` within `reach` of the way on to `at` (a structure
+    built round the spot), as the move on keeps its height until over `at`."""
+    across = [z for z in zones if z.x_min <= x <= z.x_max]
+    if arm == "left":
+        y = max([z.y_max for z in across], default=at.y) + clearance
+    else:
+        y = min([z.y_min for z in across], default=at.y) - clearance
+    z = max([at.z] + [b.z + motion.hover for b in bricks
+                      if segment_gap((b.x, b.y), (b.x, b.y), (x, y), (at.x, at.y)) < reach])
+    return Step("standby", StepKind.MOVE, Pose(x, y, z, at.yaw), motion.speed, transit=True)
 
 
 def clear_steps(arm: str, motion: MotionConfig, robot: RobotDescription) -> list[Step]:

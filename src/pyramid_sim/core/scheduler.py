@@ -50,6 +50,9 @@ def other(arm: str) -> str:
 class LockstepScheduler:
     """Hands each arm its task for the current phase and advances at the barrier."""
 
+    zones = ("shared",)
+    waits_at_standby = False  # an arm waits at its outer clear pose, as in the seed
+
     def __init__(self, left: Sequence[int], right: Sequence[int]) -> None:
         self._queues = {"left": list(left), "right": list(right)}
         self._holding: dict[str, int | None] = {"left": None, "right": None}
@@ -81,7 +84,11 @@ class LockstepScheduler:
             return False
         return other(arm) in self._outside
 
-    def report_zone(self, arm: str, outside: bool) -> None:
+    def zone_for(self, arm: str) -> str:
+        """The zone the arm's task needs (for messages): there is one."""
+        return "shared"
+
+    def report_zone(self, arm: str, outside: bool, zone: str = "shared") -> None:
         """What the physics loop saw: is every tracked point of `arm` outside the shared zone?"""
         if outside:
             self._outside.add(arm)

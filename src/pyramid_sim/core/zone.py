@@ -1,7 +1,9 @@
-"""The shared zone both arms must take turns in: the spawn spot and the structure."""
+"""The zones the arms take turns in: for the seed's lockstep one shared zone over the spawn
+spot and the structure; for the overlap schedule the spot and the structure apart."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Iterable, Sequence
 
@@ -25,6 +27,15 @@ class Zone:
     def any_inside(self, points: Iterable[np.ndarray]) -> bool:
         return any(self.contains(p) for p in points)
 
+    def meets(self, other: Zone) -> bool:
+        return (self.x_min <= other.x_max and other.x_min <= self.x_max
+                and self.y_min <= other.y_max and other.y_min <= self.y_max)
+
+    def joined(self, other: Zone) -> Zone:
+        """The smallest box around both."""
+        return Zone(min(self.x_min, other.x_min), max(self.x_max, other.x_max),
+                    min(self.y_min, other.y_min), max(self.y_max, other.y_max))
+
 
 def shared_zone(spawn: Pose, targets: Iterable[Pose], half_extent: float, margin: float) -> Zone:
     """The box around every brick pose (each `half_extent` in radius) plus `margin`."""
@@ -36,3 +47,48 @@ def shared_zone(spawn: Pose, targets: Iterable[Pose], half_extent: float, margin
         min(p.y for p in poses) - pad,
         max(p.y for p in poses) + pad,
     )
+
+
+def footprint_zone(
+    poses: Sequence[Pose], length: float, width: float, margin: float
+) -> Zone:
+    """The box around the footprints of bricks (`length` x `width`, turned by each pose's
+    yaw) at `poses`, plus `margin`."""
+    xs, ys = [], []
+    for p in poses:
+        c, s = abs(math.cos(p.yaw)), abs(math.sin(p.yaw))
+        hx, hy = (length * c + width * s) / 2 + margin, (length * s + width * c) / 2 + margin
+        xs += [p.x - hx, p.x + hx]
+        ys += [p.y - hy, p.y + hy]
+    return Zone(min(xs), max(xs), min(ys), max(ys))
+
+
+def overlap_zones(
+    spawn: Pose, targets: Sequence[Pose], length: float, width: float, margin: float
+) -> dict[str, Zone]:
+    """The overlap schedule's two zones: the spawn spot's and the structure's. Where they
+    meet (a structure built round the spot) both are the box around the two, so one arm at a
+    time works there, as in the lockstep."""
+    spot = footprint_zone([spawn], length, width, margin)
+    structure = footprint_zone(targets, length, width, margin)
+    if spot.meets(structure):
+        spot = structure = spot.joined(structure)
+    return {"spot": spot, "structure": structure}
+
+
+def segment_gap(a0: Sequence[float], a1: Sequence[float], b0: Sequence[float], b1: Sequence[float]) -> float:
+    """The least distance in the plane (x, y) between the segments a0-a1 and b0-b1: how close
+    two arms reaching from their bases (a0, b0) to their hands (a1, b1) come, seen from above."""
+    p, q, r, s = (np.asarray(v, dtype=float)[:2] for v in (a0, a1, b0, b1))
+
+    def to_segment(x: np.ndarray, s0: np.ndarray, s1: np.ndarray) -> float:
+        d = s1 - s0
+        t = float(np.clip((x - s0) @ d / (d @ d), 0.0, 1.0)) if d.any() else 0.0
+        return float(np.linalg.norm(x - s0 - t * d))
+
+    def side(x: np.ndarray, s0: np.ndarray, s1: np.ndarray) -> float:
+        return float((s1[0] - s0[0]) * (x[1] - s0[1]) - (s1[1] - s0[1]) * (x[0] - s0[0]))
+
+    if side(p, r, s) * side(q, r, s) < 0 and side(r, p, q) * side(s, p, q) < 0:
+        return 0.0  # they cross
+    return min(to_segment(p, r, s), to_segment(q, r, s), to_segment(r, p, q), to_segment(s, p, q))

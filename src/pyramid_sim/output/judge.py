@@ -111,7 +111,7 @@ def failure_reason(
                 f"{config.slip_limit_mm:g} mm limit",
         "arm_arm_contacts": f"{measured.arm_arm_contacts} arm-arm contacts",
         "arm_body_contacts": f"{measured.arm_body_contacts} contacts of an arm with the robot's body",
-        "shared_zone": f"both arms in the shared zone at {measured.zone_violations} control steps",
+        "shared_zone": f"both arms in one zone at {measured.zone_violations} control steps",
         "joint_speed": f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit",
         "joint_torque": f"arm joint {measured.torque_joint} demanded "
                         f"{measured.joint_torque_ratio:.2f} of its torque limit (servo and "

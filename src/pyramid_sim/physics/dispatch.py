@@ -10,24 +10,30 @@ from ..core.arm_runner import ArmRunner
 from ..core.overlap import OverlapScheduler
 from ..core.plan import Plan
 from ..core.poses import Pose
-from ..core.primitives import Step, clear_steps, pick_steps, place_steps
+from ..core.primitives import Step, clear_steps, pick_steps, place_steps, standby_step
 from ..core.scheduler import Action, LockstepScheduler, Task
+from ..core.zone import Zone, segment_gap
 from . import names as c
 from .spawner import Spawner
 
-SCHEDULES = {"lockstep": LockstepScheduler, "overlap": OverlapScheduler}
+STANDBY_CLEARANCE = 0.10  # m from a zone's edge to where an arm waits outside it
+REACH_GAP = 0.18  # m: arms reaching closer than this (seen from above) do not work at once
 
 
 class ArmDispatch:
     """Both arms' runners, the task each is running, and the end-of-build retract."""
 
     def __init__(
-        self, plan: Plan, config: SimConfig, spawner: Spawner, tcp: dict[str, Pose]
+        self, plan: Plan, config: SimConfig, spawner: Spawner, tcp: dict[str, Pose],
+        zones: dict[str, Zone],
     ) -> None:
-        self.plan, self.config, self.spawner = plan, config, spawner
+        self.plan, self.config, self.spawner, self.zones = plan, config, spawner, zones
         self.robot = config.robot_spec
-        schedule = SCHEDULES[config.schedule]
-        self.scheduler = schedule(plan.arm_order("left"), plan.arm_order("right"))
+        queues = (plan.arm_order("left"), plan.arm_order("right"))
+        if config.schedule == "overlap":
+            self.scheduler = OverlapScheduler(*queues, conflict=self._reach_across)
+        else:
+            self.scheduler = LockstepScheduler(*queues)
         self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap()) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
@@ -48,6 +54,20 @@ class ArmDispatch:
         if not self.scheduler.may_enter(arm):
             return True
         return step.needs_brick and not self.spawner.brick_ready()
+
+    def _reach_across(self, a: Task, b: Task) -> bool:
+        """Whether the two arms, reaching from their bases to these tasks' poses, would pass
+        within `REACH_GAP` of each other seen from above."""
+        def reach(task: Task) -> tuple[tuple[float, ...], tuple[float, float]]:
+            assert task.brick is not None
+            pose = self.plan.spawn if task.action is Action.PICK else self.plan.bricks[task.brick].target.pose
+            return self.robot.arms[task.arm].base, (pose.x, pose.y)
+
+        return segment_gap(*reach(a), *reach(b)) < REACH_GAP
+
+    def _may_go(self, arm: str, step: Step) -> bool:
+        """Whether the arm may go straight on into the zone `step` enters."""
+        return self.scheduler.may_enter(arm) and (not step.needs_brick or self.spawner.brick_ready())
 
     def schedule(self, now: float) -> bool:
         """Hand idle arms their next steps; True once the build is over and has settled."""
@@ -81,6 +101,13 @@ class ArmDispatch:
                 steps += pick_steps(self.plan.spawn, motion, carry_to=target, **grasp)
             if task.action in (Action.PLACE, Action.BUILD):
                 steps += place_steps(target, motion, **grasp)
+            if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
+                steps.insert(0, standby_step(
+                    arm, list(self.zones.values()), self.plan.spawn.x, steps[0].pose, motion,
+                    STANDBY_CLEARANCE,
+                    [b.target.pose for b in self.plan.bricks[: task.brick]],  # laid by now
+                    self.config.brick.length,
+                ))
             self.runners[arm].load(steps)
         elif task.action is Action.CLEAR:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))
@@ -92,6 +119,9 @@ class ArmDispatch:
         """One control tick of the arm (unless held); `on_done` hears a finished step before
         the scheduler hears of a finished task. Returns the pose the arm is commanded to."""
         runner = self.runners[arm]
+        step = runner.current
+        if step is not None and step.name == "standby" and self._may_go(arm, runner.steps[1]):
+            runner.cut_short()  # let in on the way: straight on from here
         if runner.busy and not self.held(arm):
             done = runner.tick(self.config.motion.control_dt, ik_error)
             if done is not None:

@@ -13,7 +13,7 @@ from ..core.measurements import Measurements
 from ..core.plan import Plan
 from ..core.primitives import Step, StepKind, clear_pose
 from ..core.scheduler import Action, Task
-from ..core.zone import shared_zone
+from ..core.zone import Zone, overlap_zones, shared_zone
 from . import names as c
 from .clearance import ArmClearance
 from .custody import BrickCustody
@@ -29,6 +29,16 @@ from .stops import stall_reason, warning_reason
 
 # m: no brick, and no arm link, this near the spawn volume when a brick is set on the spot
 SPOT_CLEARANCE, SPOT_ARM_CLEARANCE = 0.02, 0.10
+ZONE_MARGIN = 0.04  # m around the bricks' footprints
+
+
+def schedule_zones(schedule: str, plan: Plan, config: SimConfig) -> dict[str, Zone]:
+    """The zones the schedule hands out: one shared zone for the lockstep, the spot's and the
+    structure's for the overlap schedule."""
+    targets = [b.target.pose for b in plan.bricks]
+    if schedule == "overlap":
+        return overlap_zones(plan.spawn, targets, config.brick.length, config.brick.width, ZONE_MARGIN)
+    return {"shared": shared_zone(plan.spawn, targets, config.brick.length / 2, ZONE_MARGIN)}
 
 
 class BuildLoop:
@@ -43,9 +53,7 @@ class BuildLoop:
         self.data = mujoco.MjData(m)
         self.handles = h = SceneHandles(m, config.robot_spec, scene.n_bricks)
         self.ik = DualArmIK(config)
-        self.zone = shared_zone(
-            plan.spawn, [b.target.pose for b in plan.bricks], config.brick.length / 2, 0.04
-        )
+        self.zones = schedule_zones(config.schedule, plan, config)
         self.spawner = Spawner(
             m, config.robot_spec, h, plan.spawn, clearance=SPOT_CLEARANCE, arm_clearance=SPOT_ARM_CLEARANCE,
             jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
@@ -53,7 +61,7 @@ class BuildLoop:
         self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
         self._reset_arms()
         self.dispatch = ArmDispatch(
-            plan, config, self.spawner, {a: self.ik.tcp_pose(a) for a in c.ARMS}
+            plan, config, self.spawner, {a: self.ik.tcp_pose(a) for a in c.ARMS}, self.zones
         )
         self.clearance = ArmClearance(m, self.data, config.robot_spec)
         self.monitor = StepMonitor(
@@ -90,9 +98,9 @@ class BuildLoop:
         """The primitive step the arm is in (None when idle)."""
         return self.dispatch.step_of(arm)
 
-    def _arm_outside(self, arm: str) -> bool:
+    def _arm_outside(self, arm: str, zone: Zone) -> bool:
         xpos = self.data.xpos
-        return not self.zone.any_inside(xpos[b] for b in self.handles.zone_bodies[arm])
+        return not zone.any_inside(xpos[b] for b in self.handles.zone_bodies[arm])
 
     # --- one control step, in parts --------------------------------------------------------
     def _feed_spot(self) -> None:
@@ -102,11 +110,13 @@ class BuildLoop:
                 self.hooks.on_spawn(slot, self.data)
 
     def _watch_zone(self) -> None:
-        outside = {a: self._arm_outside(a) for a in c.ARMS}
-        for a in c.ARMS:
-            self.dispatch.scheduler.report_zone(a, outside[a])
-        if not outside["left"] and not outside["right"]:
-            self.zone_violations += 1
+        scheduler = self.dispatch.scheduler
+        for name, zone in self.zones.items():
+            outside = {a: self._arm_outside(a, zone) for a in c.ARMS}
+            for a in c.ARMS:
+                scheduler.report_zone(a, outside[a], name)
+            if not outside["left"] and not outside["right"]:
+                self.zone_violations += 1
 
     def _drive_arms(self) -> None:
         """Advance each arm's primitive and aim the IK at its pose."""

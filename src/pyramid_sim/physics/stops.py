@@ -36,7 +36,7 @@ def stall_reason(loop: BuildLoop) -> str:
         if picking and dispatch.scheduler.may_enter(a):
             cause = f"{a} arm waiting for the spawn spot to clear (a brick left on or near it)"
         else:
-            cause = f"{a} arm waiting for the shared zone"
+            cause = f"{a} arm waiting for the {dispatch.scheduler.zone_for(a)} zone"
     if custody.drops:
         cause += f"; earlier, {custody.drops[-1].describe()}"
         if loop.spawner.remaining == 0 and custody.needs_brick():
