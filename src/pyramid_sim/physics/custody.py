@@ -51,6 +51,7 @@ class BrickCustody:
         self.lost: list[int] = []  # slots of dropped bricks, not (yet) picked again
         self.knocks: list[Knock] = []
         self.knock_watch = KnockWatch()
+        self._awake_before = False
         self.failure: str | None = None  # set when a brick has been dropped too often
         # Where each brick lay when it was last put down by the magazine or the spawner, and
         # the bricks no arm has reached for yet: how far those move is `idle_motion`.
@@ -139,8 +140,13 @@ class BrickCustody:
         return drop
 
     def check_knocks(self) -> None:
-        """Placed bricks that moved away from where they were let go."""
-        self.knocks.extend(self.knock_watch.check(self.data.xpos, float(self.data.time)))
+        """Placed bricks that moved away from where they were let go. A brick MuJoCo has put
+        to sleep cannot move, so the positions are compared only while a placed brick is awake,
+        or was at the last look (it may have moved in between, then fallen asleep)."""
+        awake = bool(self.data.body_awake[self.knock_watch.bodies].any())
+        if awake or self._awake_before:
+            self.knocks.extend(self.knock_watch.check(self.data.xpos, float(self.data.time)))
+        self._awake_before = awake
 
     def needs_brick(self) -> bool:
         """A brick is needed while some pick is still to come."""

@@ -73,6 +73,12 @@ class BuildLoop:
             limits=joint_limits(m, config.robot_spec),
         )
         self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
+        # The command in `handles.ctrl_index` order: each arm's joints, then its gripper.
+        self._ik_q = np.concatenate([self.ik.qadr[a] for a in c.ARMS])
+        joints = len(self.ik.qadr["left"])
+        self._command = np.zeros(len(h.ctrl_index))
+        self._command_gap = np.array([joints, 2 * joints + 1])
+        self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
         self.placed = self.zone_violations = self.steps = 0
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
@@ -152,12 +158,12 @@ class BuildLoop:
         """The joint and gripper targets, ramped across the physics steps (stepped targets
         jolt the held brick); True if MuJoCo raised a warning."""
         m, d, hooks, ctrl = self.model, self.data, self.hooks, self.data.ctrl
-        ctrl_prev = ctrl.copy()
-        ctrl_next = ctrl_prev.copy()
-        ctrl_next[self.handles.ctrl_index] = np.concatenate(
-            [np.append(self.ik.arm_q(a), self.dispatch.runners[a].gap) for a in c.ARMS]
-        )
-        ramp = ctrl_prev + (ctrl_next - ctrl_prev) * self._ramp
+        command = self._command
+        command[self._command_q] = self.ik.configuration.q[self._ik_q]
+        command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
+        change = np.zeros_like(ctrl)
+        change[self.handles.ctrl_index] = command - ctrl[self.handles.ctrl_index]
+        ramp = ctrl + change * self._ramp
         warned = False
         for k in range(len(ramp)):
             ctrl[:] = ramp[k]

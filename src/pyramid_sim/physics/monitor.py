@@ -32,8 +32,8 @@ class _Span:
         self.columns = np.asarray(index) - lo
         self.buffer = np.zeros((ROWS, hi - lo))
 
-    def rows(self, n: int) -> np.ndarray:
-        return self.buffer[:n, self.columns]
+    def rows(self, n: int, part: slice = slice(None)) -> np.ndarray:
+        return self.buffer[:n, self.columns[part]]
 
 
 @dataclass(frozen=True)
@@ -63,14 +63,14 @@ class StepMonitor:
         limits: JointLimits,
     ) -> None:
         self._speed = _Span(data.qvel, dofs)
-        self._angle = _Span(data.qpos, qpos)
+        # The arm joints and the fingers lie in one stretch of qpos: one copy a step.
+        self._qpos = _Span(data.qpos, np.concatenate([qpos, fingers]))
+        self._angles, self._fingers = slice(0, len(qpos)), slice(len(qpos), None)
         self._ctrl = _Span(data.ctrl, actuators)
         self._gravity = _Span(data.qfrc_gravcomp, dofs)
         # A position servo's force before clamping: gain * ctrl + b0 + b1 * q + b2 * qdot.
         self._gain = model.actuator_gainprm[actuators, 0]
         self._bias = model.actuator_biasprm[actuators, :3].T
-        self._finger = _Span(data.qpos, fingers)
-        self._sensors = data.sensordata
         self._warnings = data.warning.number  # counts, kept up by MuJoCo
         self._no_warnings = bytes(self._warnings.nbytes)
         # Contact counts MuJoCo keeps: the arms with each other, then with the robot's body.
@@ -78,7 +78,7 @@ class StepMonitor:
             int(model.sensor_adr[s]) for s in range(model.nsensor)
             if model.sensor(s).name.startswith(c.ARM_BODY_SENSOR)
         ]
-        self._contacts = np.zeros((ROWS, len(self._contact_adr)))
+        self._contacts = _Span(data.sensordata, np.array(self._contact_adr))
         self._row = 0
         self._finger_low, self._finger_high = limits.finger_low, limits.finger_high
         self._inv_vel = 1.0 / np.asarray(limits.velocity)
@@ -96,11 +96,10 @@ class StepMonitor:
         counters' bytes costs 0.2 us, so this is checked every physics step."""
         row = self._row
         self._speed.buffer[row] = self._speed.view
-        self._angle.buffer[row] = self._angle.view
+        self._qpos.buffer[row] = self._qpos.view
         self._ctrl.buffer[row] = self._ctrl.view
         self._gravity.buffer[row] = self._gravity.view
-        self._finger.buffer[row] = self._finger.view
-        self._contacts[row] = self._sensors[self._contact_adr]
+        self._contacts.buffer[row] = self._contacts.view
         self._row = row + 1
         if self._row == ROWS:
             self.flush()
@@ -111,9 +110,9 @@ class StepMonitor:
         n, self._row = self._row, 0
         if n == 0:
             return
-        v, f = self._speed.rows(n), self._finger.rows(n)
+        v, f = self._speed.rows(n), self._qpos.rows(n, self._fingers)
         b0, b1, b2 = self._bias
-        servo = self._gain * self._ctrl.rows(n) + b0 + b1 * self._angle.rows(n) + b2 * v
+        servo = self._gain * self._ctrl.rows(n) + b0 + b1 * self._qpos.rows(n, self._angles) + b2 * v
         ratio = np.abs(servo + self._gravity.rows(n)) * self._inv_torque
         self.speed_ratio = max(self.speed_ratio, float((np.abs(v) * self._inv_vel).max()))
         peak = float(ratio.max())
@@ -121,7 +120,7 @@ class StepMonitor:
             self.torque_ratio, self.torque_joint = peak, int(ratio.max(axis=0).argmax())
         over = max(float((f - self._finger_high).max()), float((self._finger_low - f).max()))
         self.finger_excess = max(self.finger_excess, over)
-        counts = self._contacts[:n].sum(axis=0)
+        counts = self._contacts.rows(n).sum(axis=0)
         self.arm_arm_contacts += int(counts[0])
         self.arm_body_contacts += int(counts[1:].sum())
 
