@@ -7,15 +7,17 @@ kills its worker, or passes the timeout becomes a failed row with its reason; th
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing as mp
 import multiprocessing.connection
 import os
 import signal
 import sys
+import tempfile
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, Iterator
 
 from ..errors import ConfigError, PyramidSimError
 from ..output.result import BuildResult
@@ -220,6 +222,27 @@ def ray_connection_advice(address: str | None, err: Exception) -> str:
     return advice
 
 
+@contextlib.contextmanager
+def _native_stderr_held(hold: bool) -> Iterator[None]:
+    """While Ray connects to a cluster its C++ core writes a warning a second to stderr as long
+    as the cluster refuses it (about 20 before it gives up): hold them back, so a refusal reads
+    as the one line that says what to set. If the connection is made they are passed on."""
+    if not hold:
+        yield
+        return
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as held:
+        os.dup2(held.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        held.seek(0)
+        sys.stderr.write(held.read().decode(errors="replace"))  # reached only on success
+
+
 def run_ray(
     specs: Iterable[RunSpec],
     workers: int,
@@ -236,10 +259,11 @@ def run_ray(
     started_here = not ray.is_initialized()
     if started_here:
         try:
-            ray.init(
-                address=address, num_cpus=None if address else workers, include_dashboard=False,
-                log_to_driver=False, logging_level=logging.ERROR,
-            )
+            with _native_stderr_held(address is not None):
+                ray.init(
+                    address=address, num_cpus=None if address else workers,
+                    include_dashboard=False, log_to_driver=False, logging_level=logging.ERROR,
+                )
         except ConnectionError as err:
             raise PyramidSimError(ray_connection_advice(address, err)) from None
     task = ray.remote(num_cpus=1, max_retries=0)(run_one)

@@ -39,9 +39,8 @@ class SweepStore:
         self._rows: list[dict[str, str]] = []
         if path.exists():
             self._repair_and_load()
-        else:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            self._append_text(_line(COLUMNS))
+        # else the file, header first, is written with the first finished run: a sweep that
+        # cannot start (a cluster that refuses it) leaves no empty table behind
 
     def _repair_and_load(self) -> None:
         raw = self.path.read_bytes()
@@ -50,7 +49,7 @@ class SweepStore:
             with open(self.path, "r+b") as f:
                 f.truncate(len(raw))
         if not raw:
-            self._append_text(_line(COLUMNS))
+            self.path.unlink()  # an empty file: written afresh with the first run
             return
         reader = csv.DictReader(io.StringIO(raw.decode()))
         if tuple(reader.fieldnames or ()) != COLUMNS:
@@ -82,6 +81,9 @@ class SweepStore:
     def append(self, row: dict[str, Any]) -> None:
         """Write one finished run (its values spelled as the row has them)."""
         text_row = {c: _cell(row[c]) for c in COLUMNS}
+        if not self.path.exists():
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._append_text(_line(COLUMNS))
         self._append_text(_line([text_row[c] for c in COLUMNS]))
         self._rows.append(text_row)
 
