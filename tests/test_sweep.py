@@ -208,3 +208,20 @@ def test_a_refused_ray_connection_says_what_to_set(monkeypatch):
     monkeypatch.setenv("RAY_AUTH_MODE", "token")
     text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect"))
     assert "with RAY_AUTH_MODE=token" in text and "RAY_AUTH_TOKEN" in text
+
+
+@pytest.mark.physics
+def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
+    """The same grid swept with each schedule into one folder: the CSV keys its rows by
+    schedule, so both are kept side by side, and the overlap schedule's bricks come faster."""
+    out = tmp_path / "both"
+    grid = ["--structure", "pyramid-even", "--layers", "2", "--friction", "0.8", "--workers", "2"]
+    for schedule in ("lockstep", "overlap"):
+        cmd = [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--out", str(out), "--quiet",
+               *grid, "--schedule", schedule]
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        assert done.returncode == 0, done.stderr
+    rows = {r["schedule"]: r for r in _csv_rows(out / "sweep.csv")}
+    assert set(rows) == {"lockstep", "overlap"}
+    assert all(r["success"] == "true" for r in rows.values())
+    assert float(rows["overlap"]["sim_time_s"]) < 0.75 * float(rows["lockstep"]["sim_time_s"])

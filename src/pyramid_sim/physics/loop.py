@@ -116,13 +116,13 @@ class BuildLoop:
                 self.hooks.on_spawn(slot, self.data)
 
     def _watch_zone(self) -> None:
-        scheduler = self.dispatch.scheduler
+        scheduler, shared = self.dispatch.scheduler, False
         for name, zone in self.zones.items():
             outside = {a: self._arm_outside(a, zone) for a in c.ARMS}
             for a in c.ARMS:
                 scheduler.report_zone(a, outside[a], name)
-            if not outside["left"] and not outside["right"]:
-                self.zone_violations += 1
+            shared = shared or not (outside["left"] or outside["right"])
+        self.zone_violations += shared  # a control step with both arms in one zone
 
     def _drive_arms(self) -> None:
         """Advance each arm's primitive and aim the IK at its pose."""
