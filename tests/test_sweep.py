@@ -225,3 +225,19 @@ def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
     assert set(rows) == {"lockstep", "overlap"}
     assert all(r["success"] == "true" for r in rows.values())
     assert float(rows["overlap"]["sim_time_s"]) < 0.75 * float(rows["lockstep"]["sim_time_s"])
+
+
+@pytest.mark.parametrize("raised, shown", [(None, True), (ConnectionError, False), (RuntimeError, True)])
+def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, raised, shown):
+    """Output written straight to file descriptor 2 while connecting (as Ray's C++ core does)
+    is dropped when the cluster refuses the connection, and passed on otherwise."""
+    from pyramid_sim.sweep import runner
+
+    try:
+        with runner._native_stderr_held(True):
+            os.write(2, b"native retry warning\n")
+            if raised is not None:
+                raise raised("refused" if raised is ConnectionError else "other")
+    except Exception as err:
+        assert type(err) is raised
+    assert ("native retry warning" in capfd.readouterr().err) == shown

@@ -224,9 +224,9 @@ def ray_connection_advice(address: str | None, err: Exception) -> str:
 
 @contextlib.contextmanager
 def _native_stderr_held(hold: bool) -> Iterator[None]:
-    """While Ray connects to a cluster its C++ core writes a warning a second to stderr as long
-    as the cluster refuses it (about 20 before it gives up): hold them back, so a refusal reads
-    as the one line that says what to set. If the connection is made they are passed on."""
+    """Ray's C++ core writes a warning a second to stderr while a cluster refuses it (about
+    20): held back, a refusal (ConnectionError) reads as the one line that says what to set.
+    On success or another error they are passed on."""
     if not hold:
         yield
         return
@@ -234,13 +234,18 @@ def _native_stderr_held(hold: bool) -> Iterator[None]:
     saved = os.dup(2)
     with tempfile.TemporaryFile() as held:
         os.dup2(held.fileno(), 2)
+        refused = False
         try:
             yield
+        except ConnectionError:
+            refused = True
+            raise
         finally:
             os.dup2(saved, 2)
             os.close(saved)
-        held.seek(0)
-        sys.stderr.write(held.read().decode(errors="replace"))  # reached only on success
+            if not refused:
+                held.seek(0)
+                sys.stderr.write(held.read().decode(errors="replace"))
 
 
 def run_ray(
