@@ -50,11 +50,11 @@ def _ray_cli() -> str:
     try:
         import ray  # noqa: F401
     except ImportError:
-        pytest.skip("ray is not importable: pip install -e '.[ray]'")
+        pytest.fail("ray is not importable: the test extra installs it (pip install -e '.[test]')")
     beside = Path(sys.executable).with_name("ray")  # the CLI of this interpreter's Ray
     found = str(beside) if beside.exists() else shutil.which("ray")
     if found is None:
-        pytest.skip("the `ray` command line is not installed")
+        pytest.fail("the `ray` command line is missing though ray imports: reinstall ray")
     return found
 
 
