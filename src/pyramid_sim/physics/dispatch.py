@@ -30,6 +30,7 @@ class ArmDispatch:
         self.plan, self.config, self.spawner, self.zones = plan, config, spawner, zones
         self.robot = config.robot_spec
         queues = (plan.arm_order("left"), plan.arm_order("right"))
+        self._reach_seen: dict[tuple[Task, Task], bool] = {}
         if config.schedule == "overlap":
             self.scheduler = OverlapScheduler(*queues, conflict=self._reach_across)
         else:
@@ -57,13 +58,19 @@ class ArmDispatch:
 
     def _reach_across(self, a: Task, b: Task) -> bool:
         """Whether the two arms, reaching from their bases to these tasks' poses, would pass
-        within `REACH_GAP` of each other seen from above."""
+        within `REACH_GAP` of each other seen from above (asked every control step while an
+        arm waits: worked out once a pair)."""
+        if (a, b) not in self._reach_seen:
+            self._reach_seen[(a, b)] = self._reach_gap(a, b) < REACH_GAP
+        return self._reach_seen[(a, b)]
+
+    def _reach_gap(self, a: Task, b: Task) -> float:
         def reach(task: Task) -> tuple[tuple[float, ...], tuple[float, float]]:
             assert task.brick is not None
             pose = self.plan.spawn if task.action is Action.PICK else self.plan.bricks[task.brick].target.pose
             return self.robot.arms[task.arm].base, (pose.x, pose.y)
 
-        return segment_gap(*reach(a), *reach(b)) < REACH_GAP
+        return segment_gap(*reach(a), *reach(b))
 
     def _may_go(self, arm: str, step: Step) -> bool:
         """Whether the arm may go straight on into the zone `step` enters."""
