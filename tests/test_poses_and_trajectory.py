@@ -3,6 +3,7 @@ import math
 import numpy as np
 import pytest
 
+from pyramid_sim.config import MotionConfig
 from pyramid_sim.core.poses import (
     Pose,
     grasp_yaw,
@@ -12,7 +13,8 @@ from pyramid_sim.core.poses import (
     tcp_rotation,
     yaw_of,
 )
-from pyramid_sim.core.trajectory import min_jerk, plan_segment
+from pyramid_sim.core.primitives import pick_steps, place_steps
+from pyramid_sim.core.trajectory import min_jerk, plan_segment, turned_within
 
 
 def test_tcp_rotation_points_down_with_its_yaw():
@@ -50,3 +52,35 @@ def test_segment_respects_peak_speed():
     ]
     assert max(speeds) == pytest.approx(0.5, rel=0.01)
     assert seg.at(seg.duration + 1).position == pytest.approx([0.3, 0.4, 0])
+
+
+def test_a_turn_begun_on_a_move_never_makes_it_longer():
+    start, end = Pose(0.5, 0.0, 0.2, 0.0), Pose(0.5, 0.0, 0.3, 0.0)
+    plain = plan_segment(start, end, speed=0.25, turn_rate=1.5).duration
+    part = turned_within(start, end, math.pi / 2, speed=0.25, turn_rate=1.5)
+    assert 0.0 < part.yaw < math.pi / 2  # a 0.1 m lift has time for part of a quarter turn
+    assert part.position == pytest.approx(end.position)
+    assert plan_segment(start, part, speed=0.25, turn_rate=1.5).duration == pytest.approx(plain)
+    # A small turn is done whole, and the other way round goes the other way.
+    assert turned_within(start, end, 0.1, 0.25, 1.5).yaw == pytest.approx(0.1)
+    assert turned_within(start, end, -math.pi / 2, 0.25, 1.5).yaw == pytest.approx(-part.yaw)
+
+
+def test_retracts_begin_the_next_turn_only_when_told():
+    motion, spot, target = MotionConfig(), Pose(0.49, 0.01, 0.11, math.pi / 2), Pose(0.73, 0.3, 0.11, 0.0)
+    grasp = {"grasp_height": 0.02, "yaw_ref": 0.0}
+    plain = pick_steps(spot, motion, carry_to=target, **grasp)[-1]
+    turned = pick_steps(spot, motion, carry_to=target, then_yaw=0.0, **grasp)[-1]
+    assert plain.name == turned.name == "retract"
+    assert plain.pose.yaw == pytest.approx(math.pi / 2)
+    assert 0.0 < turned.pose.yaw < math.pi / 2 and turned.pose.position == pytest.approx(plain.pose.position)
+    up = place_steps(target, motion, then_yaw=math.pi / 2, **grasp)[-1]
+    assert 0.0 < up.pose.yaw < math.pi / 2
+    assert place_steps(target, motion, **grasp)[-1].pose.yaw == pytest.approx(0.0)
+
+
+def test_bricks_a_rounding_apart_are_gripped_alike_not_half_a_turn_apart():
+    # 1.5708 (a goals file's quarter turn) and pi/2 (the spawn's) square to the reference.
+    assert grasp_yaw(1.5708, 0.0) == pytest.approx(grasp_yaw(math.pi / 2, 0.0), abs=1e-4)
+    assert grasp_yaw(-math.pi / 2, 0.0) == pytest.approx(math.pi / 2)
+    assert grasp_yaw(0.3, 0.0) == pytest.approx(0.3)

@@ -175,3 +175,22 @@ def test_the_overlap_schedule_builds_in_order_one_arm_in_a_zone_faster_than_the_
     assert result.inputs.settings["schedule"] == "overlap"
     lockstep = run_build(prepare(spec, SimConfig()), SimConfig())
     assert result.sim_s_per_brick < 0.75 * lockstep.sim_s_per_brick
+
+
+@pytest.mark.parametrize("schedule", ["lockstep", "overlap"])
+def test_only_the_overlap_schedule_begins_the_hands_turn_on_the_way_up(schedule):
+    from dataclasses import replace
+
+    from pyramid_sim.core.poses import grasp_yaw
+
+    config = replace(SimConfig(), schedule=schedule)
+    loop = BuildLoop(prepare(StructureSpec("pyramid-even", layers=2), config), config)
+    loop.dispatch.schedule(0.0)
+    steps = loop.dispatch.runners["left"].steps
+    grip = next(i for i, s in enumerate(steps) if s.name == "grip")
+    grasped, lifted = steps[grip - 1].pose.yaw, steps[grip + 1].pose.yaw
+    target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, 0.0)
+    if schedule == "lockstep":
+        assert lifted == pytest.approx(grasped)  # the seed turns on the way out
+    else:
+        assert abs(lifted - target) < abs(grasped - target) - 0.3

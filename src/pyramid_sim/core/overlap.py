@@ -25,6 +25,7 @@ class OverlapScheduler:
 
     zones = ("spot", "structure")
     waits_at_standby = True  # an arm refused a zone waits just outside it
+    turns_ahead = True  # a retract begins the hand's turn to the next move
 
     def __init__(
         self, left: Sequence[int], right: Sequence[int],

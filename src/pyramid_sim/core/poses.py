@@ -49,7 +49,9 @@ def grasp_yaw(brick_yaw: float, reference: float) -> float:
     The fingers close along the hand's y axis, so the hand yaw equals the brick yaw modulo pi.
     """
     candidates = (wrap_angle(brick_yaw), wrap_angle(brick_yaw + math.pi))
-    return min(candidates, key=lambda y: abs(wrap_angle(y - reference)))
+    # A brick square to the reference is a tie: the larger yaw, so that bricks whose yaws
+    # differ by a rounding are gripped alike (not half a turn apart).
+    return min(candidates, key=lambda y: (round(abs(wrap_angle(y - reference)), 4), -y))
 
 
 def tcp_rotation(yaw: float) -> np.ndarray:

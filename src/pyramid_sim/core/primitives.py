@@ -15,6 +15,7 @@ from typing import Sequence
 from ..config import MotionConfig
 from ..robots import RobotDescription
 from .poses import Pose, grasp_yaw
+from .trajectory import turned_within
 from .zone import Zone, segment_gap
 
 # Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
@@ -47,17 +48,21 @@ def pick_steps(
     *,
     grasp_height: float,
     yaw_ref: float = YAW_REFERENCE,
+    then_yaw: float | None = None,
 ) -> list[Step]:
     """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre.
 
     With `carry_to` (the resting pose the brick is for) the retract lifts straight up to that
     place's hover height, so the carry over to it is level: a carried brick never cuts down
-    across the courses already laid (walls run towards the spawn spot)."""
+    across the courses already laid (walls run towards the spawn spot). With `then_yaw` (the
+    hand's yaw on the move after) the retract begins that turn (see `turned_within`)."""
     grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
     half = motion.hover / 2
     retract = grasp.moved(dz=half)
     if carry_to is not None:
         retract = grasp.moved(dz=max(half, carry_to.z + motion.hover - brick.z))
+    if then_yaw is not None:
+        retract = turned_within(grasp, retract, then_yaw, motion.slow_speed, motion.turn_rate)
     return [
         # Back from a place above the courses: level over to the spot, then down.
         Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed,
@@ -75,15 +80,20 @@ def place_steps(
     *,
     grasp_height: float,
     yaw_ref: float = YAW_REFERENCE,
+    then_yaw: float | None = None,
 ) -> list[Step]:
-    """Steps that set a held brick down at `target` (its resting pose) and let go of it."""
+    """Steps that set a held brick down at `target` (its resting pose) and let go of it; with
+    `then_yaw` the empty hand begins its turn to the next move on the way up."""
     hold = target.moved(dz=grasp_height).with_yaw(grasp_yaw(target.yaw, yaw_ref))
     release = hold.moved(dz=motion.release_clearance)
+    up = hold.moved(dz=motion.hover)
+    if then_yaw is not None:
+        up = turned_within(release, up, then_yaw, motion.slow_speed, motion.turn_rate)
     return [
         Step("hover", StepKind.MOVE, hold.moved(dz=motion.hover), motion.speed, enters_zone=True),
         Step("servo", StepKind.MOVE, release, motion.slow_speed),
         Step("release", StepKind.RELEASE),
-        Step("retract", StepKind.MOVE, hold.moved(dz=motion.hover), motion.slow_speed),
+        Step("retract", StepKind.MOVE, up, motion.slow_speed),
     ]
 
 

@@ -52,6 +52,7 @@ class LockstepScheduler:
 
     zones = ("shared",)
     waits_at_standby = False  # an arm waits at its outer clear pose, as in the seed
+    turns_ahead = False  # each move turns the hand on its own, as in the seed
 
     def __init__(self, left: Sequence[int], right: Sequence[int]) -> None:
         self._queues = {"left": list(left), "right": list(right)}

@@ -50,6 +50,16 @@ def plan_segment(
     return Segment(start, end, max(min_duration, duration))
 
 
+def turned_within(start: Pose, end: Pose, yaw: float, speed: float, turn_rate: float) -> Pose:
+    """`end` with its yaw turned from `start`'s towards `yaw` as far as the move start-end
+    allows without taking longer than it would at `speed` with no turn: a turn begun on one
+    move leaves less to turn on the next."""
+    distance = math.dist((start.x, start.y, start.z), (end.x, end.y, end.z))
+    most = turn_rate * distance / speed
+    turn = wrap_angle(yaw - start.yaw)
+    return end.with_yaw(start.yaw + max(-most, min(most, turn)))
+
+
 @dataclass(frozen=True)
 class Path:
     """Segments run one after the other (each comes to rest at its end)."""

@@ -9,8 +9,15 @@ from ..config import SimConfig
 from ..core.arm_runner import ArmRunner
 from ..core.overlap import OverlapScheduler
 from ..core.plan import Plan
-from ..core.poses import Pose
-from ..core.primitives import Step, clear_steps, pick_steps, place_steps, standby_step
+from ..core.poses import Pose, grasp_yaw
+from ..core.primitives import (
+    Step,
+    clear_pose,
+    clear_steps,
+    pick_steps,
+    place_steps,
+    standby_step,
+)
 from ..core.scheduler import Action, LockstepScheduler, Task
 from ..core.zone import Zone, segment_gap
 from . import names as c
@@ -103,11 +110,14 @@ class ArmDispatch:
         if task.action in (Action.PICK, Action.PLACE, Action.BUILD):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
+            turn = self.scheduler.turns_ahead
             steps = []
             if task.action in (Action.PICK, Action.BUILD):
-                steps += pick_steps(self.plan.spawn, motion, carry_to=target, **grasp)
+                then = grasp_yaw(target.yaw, grasp["yaw_ref"]) if turn else None
+                steps += pick_steps(self.plan.spawn, motion, carry_to=target, then_yaw=then, **grasp)
             if task.action in (Action.PLACE, Action.BUILD):
-                steps += place_steps(target, motion, **grasp)
+                then = self._yaw_after(arm, task.brick) if turn else None
+                steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
                 steps.insert(0, standby_step(
                     arm, list(self.zones.values()), self.plan.spawn.x, steps[0].pose, motion,
@@ -119,6 +129,14 @@ class ArmDispatch:
         elif task.action is Action.CLEAR:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))
         self.task_of[arm] = task
+
+    def _yaw_after(self, arm: str, brick: int) -> float:
+        """The hand's yaw for the arm's move after placing `brick`: the next pick's, or its
+        clear pose's after its last brick."""
+        later = [b for b in self.plan.arm_order(arm) if b > brick]
+        if later:
+            return grasp_yaw(self.plan.spawn.yaw, self.robot.arms[arm].yaw_reference)
+        return clear_pose(arm, self.robot).yaw
 
     def advance(
         self, arm: str, ik_error: float, on_done: Callable[[str, Step, Task | None], None]
