@@ -189,7 +189,8 @@ def test_only_the_overlap_schedule_begins_the_hands_turn_on_the_way_up(schedule)
     steps = loop.dispatch.runners["left"].steps
     grip = next(i for i, s in enumerate(steps) if s.name == "grip")
     grasped, lifted = steps[grip - 1].pose.yaw, steps[grip + 1].pose.yaw
-    target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, 0.0)
+    reference = config.robot_spec.arms["left"].yaw_reference
+    target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, reference)
     if schedule == "lockstep":
         assert lifted == pytest.approx(grasped)  # the seed turns on the way out
     else:

@@ -133,8 +133,7 @@ class ArmDispatch:
     def _yaw_after(self, arm: str, brick: int) -> float:
         """The hand's yaw for the arm's move after placing `brick`: the next pick's, or its
         clear pose's after its last brick."""
-        later = [b for b in self.plan.arm_order(arm) if b > brick]
-        if later:
+        if any(b > brick for b in self.plan.arm_order(arm)):
             return grasp_yaw(self.plan.spawn.yaw, self.robot.arms[arm].yaw_reference)
         return clear_pose(arm, self.robot).yaw
 
