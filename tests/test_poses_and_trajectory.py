@@ -13,8 +13,13 @@ from pyramid_sim.core.poses import (
     tcp_rotation,
     yaw_of,
 )
-from pyramid_sim.core.primitives import pick_steps, place_steps
-from pyramid_sim.core.trajectory import min_jerk, plan_segment, turned_within
+from pyramid_sim.core.primitives import lift_speed, pick_steps, place_steps
+from pyramid_sim.core.trajectory import (
+    bounded_speed,
+    min_jerk,
+    plan_segment,
+    turned_within,
+)
 
 
 def test_tcp_rotation_points_down_with_its_yaw():
@@ -84,3 +89,30 @@ def test_bricks_a_rounding_apart_are_gripped_alike_not_half_a_turn_apart():
     assert grasp_yaw(1.5708, 0.0) == pytest.approx(grasp_yaw(math.pi / 2, 0.0), abs=1e-4)
     assert grasp_yaw(-math.pi / 2, 0.0) == pytest.approx(math.pi / 2)
     assert grasp_yaw(0.3, 0.0) == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize("distance", [0.02, 0.1, 0.3, 1.0])
+def test_a_bounded_speed_keeps_the_moves_peak_acceleration_within_its_bound(distance):
+    speed = bounded_speed(distance, 0.6, 2.0)
+    seg = plan_segment(Pose(0, 0, 0), Pose(0, 0, distance), speed=speed, turn_rate=1.0, min_duration=0.0)
+    dt = seg.duration / 2000
+    z = np.array([seg.at(t).z for t in np.arange(0, seg.duration + dt, dt)])
+    peak = np.max(np.abs(np.diff(z, 2))) / dt**2
+    assert peak <= 2.0 * 1.01
+    # Short moves are held to the acceleration, long ones to the speed.
+    if distance < 0.3:
+        assert speed < 0.6 and peak == pytest.approx(2.0, rel=0.02)
+    else:
+        assert speed == 0.6
+
+
+def test_quick_lifts_rise_faster_than_the_seeds_but_never_slower():
+    motion = MotionConfig()
+    assert lift_speed(0.0005, motion) == motion.slow_speed
+    assert motion.slow_speed < lift_speed(0.3, motion) <= motion.speed
+    spot, target = Pose(0.49, 0.01, 0.11, math.pi / 2), Pose(0.73, 0.3, 0.296, 0.0)
+    grasp = {"grasp_height": 0.02, "yaw_ref": 0.0}
+    slow = pick_steps(spot, motion, carry_to=target, **grasp)[-1]
+    quick = pick_steps(spot, motion, carry_to=target, quick_lift=True, **grasp)[-1]
+    assert slow.speed == motion.slow_speed and quick.speed > slow.speed
+    assert quick.pose == slow.pose

@@ -178,7 +178,7 @@ def test_the_overlap_schedule_builds_in_order_one_arm_in_a_zone_faster_than_the_
 
 
 @pytest.mark.parametrize("schedule", ["lockstep", "overlap"])
-def test_only_the_overlap_schedule_begins_the_hands_turn_on_the_way_up(schedule):
+def test_only_the_overlap_schedule_lifts_quickly_and_turns_on_the_way_up(schedule):
     from dataclasses import replace
 
     from pyramid_sim.core.poses import grasp_yaw
@@ -191,7 +191,10 @@ def test_only_the_overlap_schedule_begins_the_hands_turn_on_the_way_up(schedule)
     grasped, lifted = steps[grip - 1].pose.yaw, steps[grip + 1].pose.yaw
     reference = config.robot_spec.arms["left"].yaw_reference
     target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, reference)
+    lift = steps[grip + 1].speed
     if schedule == "lockstep":
         assert lifted == pytest.approx(grasped)  # the seed turns on the way out
+        assert lift == config.motion.slow_speed
     else:
         assert abs(lifted - target) < abs(grasped - target) - 0.3
+        assert lift > config.motion.slow_speed

@@ -25,7 +25,7 @@ class OverlapScheduler:
 
     zones = ("spot", "structure")
     waits_at_standby = True  # an arm refused a zone waits just outside it
-    turns_ahead = True  # a retract begins the hand's turn to the next move
+    quick_retracts = True  # a retract begins the hand's next turn; a pick's lifts at the free speed
 
     def __init__(
         self, left: Sequence[int], right: Sequence[int],

@@ -15,11 +15,13 @@ from typing import Sequence
 from ..config import MotionConfig
 from ..robots import RobotDescription
 from .poses import Pose, grasp_yaw
-from .trajectory import turned_within
+from .trajectory import bounded_speed, turned_within
 from .zone import Zone, segment_gap
 
 # Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
 YAW_REFERENCE = 0.0
+# m/s^2: a quick lift's bound, what the seed's own slow 5 cm moves reach (docs/performance.md)
+LIFT_ACCELERATION = 2.0
 
 
 class StepKind(str, Enum):
@@ -49,20 +51,23 @@ def pick_steps(
     grasp_height: float,
     yaw_ref: float = YAW_REFERENCE,
     then_yaw: float | None = None,
+    quick_lift: bool = False,
 ) -> list[Step]:
     """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre.
 
     With `carry_to` (the resting pose the brick is for) the retract lifts straight up to that
     place's hover height, so the carry over to it is level: a carried brick never cuts down
     across the courses already laid (walls run towards the spawn spot). With `then_yaw` (the
-    hand's yaw on the move after) the retract begins that turn (see `turned_within`)."""
+    hand's yaw on the move after) the retract begins that turn (see `turned_within`); with
+    `quick_lift` it lifts at the free speed, its acceleration bounded (`lift_speed`)."""
     grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
     half = motion.hover / 2
     retract = grasp.moved(dz=half)
     if carry_to is not None:
         retract = grasp.moved(dz=max(half, carry_to.z + motion.hover - brick.z))
+    lift = lift_speed(retract.z - grasp.z, motion) if quick_lift else motion.slow_speed
     if then_yaw is not None:
-        retract = turned_within(grasp, retract, then_yaw, motion.slow_speed, motion.turn_rate)
+        retract = turned_within(grasp, retract, then_yaw, lift, motion.turn_rate)
     return [
         # Back from a place above the courses: level over to the spot, then down.
         Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed,
@@ -70,7 +75,7 @@ def pick_steps(
         Step("approach", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
         Step("servo", StepKind.MOVE, grasp, motion.slow_speed),
         Step("grip", StepKind.GRIP),
-        Step("retract", StepKind.MOVE, retract, motion.slow_speed),
+        Step("retract", StepKind.MOVE, retract, lift),
     ]
 
 
@@ -95,6 +100,12 @@ def place_steps(
         Step("release", StepKind.RELEASE),
         Step("retract", StepKind.MOVE, up, motion.slow_speed),
     ]
+
+
+def lift_speed(distance: float, motion: MotionConfig) -> float:
+    """The peak speed of a quick lift over `distance`: the free speed, bounded by
+    `LIFT_ACCELERATION`, never below the slow speed of the seed's retract."""
+    return max(motion.slow_speed, bounded_speed(distance, motion.speed, LIFT_ACCELERATION))
 
 
 def clear_pose(arm: str, robot: RobotDescription) -> Pose:

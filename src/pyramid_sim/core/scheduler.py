@@ -52,7 +52,7 @@ class LockstepScheduler:
 
     zones = ("shared",)
     waits_at_standby = False  # an arm waits at its outer clear pose, as in the seed
-    turns_ahead = False  # each move turns the hand on its own, as in the seed
+    quick_retracts = False  # the seed's slow retracts, each move turning the hand on its own
 
     def __init__(self, left: Sequence[int], right: Sequence[int]) -> None:
         self._queues = {"left": list(left), "right": list(right)}

@@ -50,6 +50,15 @@ def plan_segment(
     return Segment(start, end, max(min_duration, duration))
 
 
+def bounded_speed(distance: float, speed: float, acceleration: float) -> float:
+    """The peak speed of a minimum-jerk move over `distance`, at most `speed`, whose peak
+    acceleration (1.642 v^2 / distance for that profile) stays within `acceleration`: short
+    moves at a high peak speed jolt what the hand holds."""
+    if distance <= 0.0:
+        return speed
+    return min(speed, math.sqrt(acceleration * distance / 1.642))
+
+
 def turned_within(start: Pose, end: Pose, yaw: float, speed: float, turn_rate: float) -> Pose:
     """`end` with its yaw turned from `start`'s towards `yaw` as far as the move start-end
     allows without taking longer than it would at `speed` with no turn: a turn begun on one

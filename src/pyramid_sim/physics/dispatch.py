@@ -110,13 +110,14 @@ class ArmDispatch:
         if task.action in (Action.PICK, Action.PLACE, Action.BUILD):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
-            turn = self.scheduler.turns_ahead
+            quick = self.scheduler.quick_retracts
             steps = []
             if task.action in (Action.PICK, Action.BUILD):
-                then = grasp_yaw(target.yaw, grasp["yaw_ref"]) if turn else None
-                steps += pick_steps(self.plan.spawn, motion, carry_to=target, then_yaw=then, **grasp)
+                then = grasp_yaw(target.yaw, grasp["yaw_ref"]) if quick else None
+                steps += pick_steps(self.plan.spawn, motion, carry_to=target, then_yaw=then,
+                                    quick_lift=quick, **grasp)
             if task.action in (Action.PLACE, Action.BUILD):
-                then = self._yaw_after(arm, task.brick) if turn else None
+                then = self._yaw_after(arm, task.brick) if quick else None
                 steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
                 steps.insert(0, standby_step(
