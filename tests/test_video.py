@@ -82,6 +82,24 @@ def test_a_terminated_run_leaves_no_video_behind(tmp_path):
     assert not (tmp_path / "t").exists()  # nor the folder the run made for it
 
 
+def test_ctrl_c_waits_until_the_frame_is_written():
+    """A Ctrl-C during a frame's write is held until the write ends, then raised: ffmpeg never
+    sees a cut frame (it would print its own errors before the run's one line)."""
+    import signal
+    import time
+
+    from pyramid_sim.output.video import sigint_held
+
+    written = []
+    with pytest.raises(KeyboardInterrupt):
+        with sigint_held():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # an unheld SIGINT would have been raised by now
+            written.append("frame")
+    assert written == ["frame"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # let go again
+
+
 def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
     """SIGINT mid-build with video: exit 130, one line and no traceback, no MP4, no temporary
     file and no folder the run made."""

@@ -7,8 +7,11 @@ Files are written under a temporary name and renamed when complete.
 from __future__ import annotations
 
 import os
+import signal
+import threading
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Iterator
 
 import imageio.v2 as imageio
 import mujoco
@@ -34,6 +37,25 @@ def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> mujoco.Renderer
         ) from None
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
     return renderer
+
+
+@contextmanager
+def sigint_held() -> Iterator[None]:
+    """Hold Ctrl-C back until the block ends: a frame cut off halfway down ffmpeg's pipe makes
+    ffmpeg print its own errors (it shares our stderr) before the run's one line. A handler,
+    not a signal mask: the mask is per thread, and numpy's threads would take the signal."""
+    before = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or before is None:
+        yield  # only the main thread handles signals; None: a handler Python did not set
+        return
+    caught: list[int] = []
+    signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, before)
+    if caught:
+        signal.raise_signal(signal.SIGINT)  # now, to whatever handled it before
 
 
 class Recorder:
@@ -67,7 +89,9 @@ class Recorder:
         return self.renderer.render()
 
     def __call__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        self.writer.append_data(self.render(data))
+        frame = self.render(data)
+        with sigint_held():  # a Ctrl-C lands after the whole frame is written
+            self.writer.append_data(frame)
         self.frames += 1
         if self.on_frame is not None:
             self.on_frame(self.frames)
