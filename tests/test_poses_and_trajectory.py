@@ -17,6 +17,7 @@ from pyramid_sim.core.primitives import lift_speed, pick_steps, place_steps
 from pyramid_sim.core.trajectory import (
     bounded_speed,
     min_jerk,
+    plan_path,
     plan_segment,
     turned_within,
 )
@@ -57,6 +58,24 @@ def test_segment_respects_peak_speed():
     ]
     assert max(speeds) == pytest.approx(0.5, rel=0.01)
     assert seg.at(seg.duration + 1).position == pytest.approx([0.3, 0.4, 0])
+
+
+@pytest.mark.parametrize("transit", [False, True])
+def test_a_long_turn_does_not_slow_the_way(transit):
+    """A quarter turn over a short way: the hand is at its end as soon as the way alone allows
+    and turns on until the turn is done; up, over and down keep their corners."""
+    start, end = Pose(0.73, 0.07, 0.40, 0.0), Pose(0.49, 0.25, 0.21, math.pi / 2)
+    path = plan_path(start, end, speed=0.6, turn_rate=1.5, transit=transit)
+    way = sum(s.duration for s in path.segments)
+    turn = plan_segment(start, start.with_yaw(end.yaw), speed=0.6, turn_rate=1.5).duration
+    assert way < turn == pytest.approx(path.duration)  # the turn, not the way, sets the length
+    assert path.at(way).position == pytest.approx(end.position)  # there already
+    assert 0.0 < path.at(way).yaw < end.yaw  # still turning
+    assert path.at(path.duration).yaw == pytest.approx(end.yaw)
+    if transit:  # over at the start's height, then straight down
+        assert path.segments[0].end.position == pytest.approx([end.x, end.y, start.z])
+    lengthened = plan_segment(start, end, speed=0.6, turn_rate=1.5).duration
+    assert path.duration == pytest.approx(lengthened)  # never longer than turning and moving in step
 
 
 def test_a_turn_begun_on_a_move_never_makes_it_longer():

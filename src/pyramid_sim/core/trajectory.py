@@ -71,15 +71,21 @@ def turned_within(start: Pose, end: Pose, yaw: float, speed: float, turn_rate: f
 
 @dataclass(frozen=True)
 class Path:
-    """Segments run one after the other (each comes to rest at its end)."""
+    """The hand's position along `segments`, run one after the other (each comes to rest at
+    its end), and its yaw along `turn`, on its own clock from the same start: the move lasts
+    as long as the longer of the two."""
 
     segments: tuple[Segment, ...]
+    turn: Segment
 
     @property
     def duration(self) -> float:
-        return sum(s.duration for s in self.segments)
+        return max(sum(s.duration for s in self.segments), self.turn.duration)
 
     def at(self, t: float) -> Pose:
+        return self._position(t).with_yaw(self.turn.at(t).yaw)
+
+    def _position(self, t: float) -> Pose:
         for segment in self.segments:
             if t < segment.duration:
                 return segment.at(t)
@@ -90,8 +96,9 @@ class Path:
 def plan_path(start: Pose, end: Pose, speed: float, turn_rate: float, transit: bool) -> Path:
     """A straight move; for a transit, up, over and down at the higher of the two heights, so
     the hand never cuts down across bricks already laid on its way (a straight descent from
-    above the top course to the spawn spot clips the courses between). The wrist turns on the
-    level leg."""
+    above the top course to the spawn spot clips the courses between). The hand turns on its
+    own clock: a turn that takes longer than the way does not slow the way (a hand leaving a
+    zone while it turns is out sooner), and it is done by the time the move ends."""
     points = [start]
     if transit:
         high = max(start.z, end.z)
@@ -100,4 +107,8 @@ def plan_path(start: Pose, end: Pose, speed: float, turn_rate: float, transit: b
         if high - end.z > 1e-3:
             points.append(Pose(end.x, end.y, high, end.yaw))
     points.append(end)
-    return Path(tuple(plan_segment(a, b, speed, turn_rate) for a, b in zip(points, points[1:])))
+    way = [p.with_yaw(start.yaw) for p in points]
+    return Path(
+        tuple(plan_segment(a, b, speed, turn_rate) for a, b in zip(way, way[1:])),
+        turn=plan_segment(start, start.with_yaw(end.yaw), speed, turn_rate),
+    )
