@@ -4,6 +4,7 @@ next from the magazine)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import mujoco
@@ -21,7 +22,7 @@ from ..core.incidents import (
 from ..core.primitives import Step, StepKind
 from . import names as c
 from .handles import SceneHandles
-from .spawner import Spawner
+from .spawner import ON_SPOT_ANGLE, ON_SPOT_XY, ON_SPOT_Z, Spawner
 
 
 @dataclass
@@ -169,4 +170,27 @@ class BrickCustody:
             q = self.handles.brick_qpos[slot]
             self.rest[slot] = d.qpos[q : q + 3]
             return slot
+        else:
+            self._check_spot_blocked()
         return None
+
+    def _check_spot_blocked(self) -> None:
+        """A dropped brick at rest in the spot's way, but not lying as spawned, can neither be
+        picked again nor let the next brick onto the spot: the build cannot go on (rather than
+        stall until `stall_time`). At rest is asleep: MuJoCo wakes a brick anything touches."""
+        d = self.data
+        for slot in self.lost:
+            body = self.handles.brick_body[slot]
+            if d.body_awake[body] or not self.spawner.in_the_way(d, slot):
+                continue
+            drop = next(e for e in reversed(self.drops) if e.slot == slot)
+            across, height, tilt, turn = self.spawner.spot_offset(d, slot)
+            self.failure = (
+                f"{drop.describe()}; it came to rest in the spawn spot's way, {across * 1000:.1f} mm "
+                f"across and {height * 1000:.1f} mm up or down from the spot, tilted "
+                f"{math.degrees(tilt):.1f} deg and turned {math.degrees(turn):.1f} deg, too far to be "
+                f"picked again ({ON_SPOT_XY * 1000:g} mm, {ON_SPOT_Z * 1000:g} mm and "
+                f"{math.degrees(ON_SPOT_ANGLE):g} deg beyond the spawn jitter), and no brick can be "
+                f"set on the spot past it: {grip_diagnosis(self.config)}"
+            )
+            return

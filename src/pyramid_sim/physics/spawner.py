@@ -78,18 +78,30 @@ class Spawner:
                 return False
         return True
 
-    def rests_on_spot(self, data: mujoco.MjData, slot: int) -> bool:
-        """Whether the brick in `slot` lies on the spot as spawned (a dropped brick that fell
-        back where it was picked can simply be picked again)."""
+    def spot_offset(self, data: mujoco.MjData, slot: int) -> tuple[float, float, float, float]:
+        """How far the brick in `slot` lies from the spot as spawned: across (m), up or down
+        (m), its tilt and its turn (rad)."""
         body = self.body[slot]
         offset = data.xpos[body] - self.spawn.position
         rot = data.xmat[body].reshape(3, 3)
-        return bool(
-            math.hypot(offset[0], offset[1]) <= self.jitter * math.sqrt(2) + ON_SPOT_XY
-            and abs(offset[2]) <= ON_SPOT_Z
-            and tilt_of(rot) <= ON_SPOT_ANGLE
-            and symmetric_yaw_error(yaw_of(rot), self.spawn.yaw) <= ON_SPOT_ANGLE
+        return (
+            math.hypot(offset[0], offset[1]), abs(float(offset[2])), tilt_of(rot),
+            symmetric_yaw_error(yaw_of(rot), self.spawn.yaw),
         )
+
+    def rests_on_spot(self, data: mujoco.MjData, slot: int) -> bool:
+        """Whether the brick in `slot` lies on the spot as spawned (a dropped brick that fell
+        back where it was picked can simply be picked again)."""
+        across, height, tilt, turn = self.spot_offset(data, slot)
+        return bool(
+            across <= self.jitter * math.sqrt(2) + ON_SPOT_XY and height <= ON_SPOT_Z
+            and tilt <= ON_SPOT_ANGLE and turn <= ON_SPOT_ANGLE
+        )
+
+    def in_the_way(self, data: mujoco.MjData, slot: int) -> bool:
+        """Whether the brick in `slot` lies within `clearance` of the spawn volume: no brick
+        is set on the spot while it is there."""
+        return not self._apart(data, [self.model.body_geomadr[self.body[slot]]], self.clearance)
 
     def put_back(self, slot: int) -> None:
         """The brick in `slot` lies on the spot again: it is the one to pick next."""
