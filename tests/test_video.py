@@ -91,13 +91,19 @@ def test_ctrl_c_waits_until_the_frame_is_written():
     from pyramid_sim.output.video import sigint_held
 
     written = []
-    with pytest.raises(KeyboardInterrupt):
-        with sigint_held():
-            os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.05)  # an unheld SIGINT would have been raised by now
-            written.append("frame")
+    # Python's own Ctrl-C, whatever this process was started with (a shell's background job
+    # ignores SIGINT).
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            with sigint_held():
+                os.kill(os.getpid(), signal.SIGINT)
+                time.sleep(0.05)  # an unheld SIGINT would have been raised by now
+                written.append("frame")
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # let go again
+    finally:
+        signal.signal(signal.SIGINT, before)
     assert written == ["frame"]
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # let go again
 
 
 def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
@@ -111,6 +117,8 @@ def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
         [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers",
          "2", "--quiet", "--out", "i/run", "--video", "i/run/build.mp4"],
         env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        # Ctrl-C as a terminal gives it, even under a runner that ignores SIGINT (inherited)
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and not list((tmp_path / "i" / "run").glob(".build.*")):

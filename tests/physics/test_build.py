@@ -1,6 +1,7 @@
 """Physics: two Pandas build the seed's pyramids; every final brick pose is checked."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -80,27 +81,60 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     assert result.bricks_placed == 0
 
 
-def test_a_dropped_brick_blocking_the_spawn_spot_stalls_the_build_with_its_reason(teleport):
-    """A brick knocked out of the hand onto the table beside the spawn spot blocks the spare
-    that would replace it; the next pick waits for the spot, the build ends at the stall limit
-    and says why (naming the drop) instead of running to the time limit."""
+def test_a_dropped_brick_in_the_spawn_spots_way_ends_the_build_at_once_with_its_reason(teleport):
+    """A brick knocked out of the hand onto the table beside the spawn spot cannot be picked
+    again and keeps the spare off the spot: the build ends as soon as it lies still, naming the
+    drop and where the brick lies, instead of waiting for the stall limit."""
     from dataclasses import replace
 
     from pyramid_sim.output.judge import judge
 
     config = replace(SimConfig(), stall_time=15.0)
     loop = BuildLoop(prepare(StructureSpec("pyramid", layers=2), config), config)
+    knocked = []
 
     def knock(loop, data):
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if carry is not None and step is not None and step.name == "clear":
             teleport(loop, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
+            knocked.append(data.time)
 
     result = judge(loop.run(BuildHooks(on_step=knock)), config)
     assert not result.success
     reason = result.failure_reason
-    assert "stalled" in reason and "spawn spot" in reason and "brick 0 slipped out" in reason
-    assert result.sim_time_s < 60.0
+    assert reason.startswith("brick 0 slipped out of the left hand during 'clear'")
+    where = re.search(r"in the spawn spot's way, ([\d.]+) mm across", reason)
+    assert where and float(where[1]) == pytest.approx(130, abs=3)  # where it was knocked to
+    assert result.sim_time_s < knocked[0] + 5.0
+
+
+def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_its_reason():
+    """A placed brick knocked onto the spawn spot's way is no dropped brick to pick again: the
+    next pick waits for the spot, and the build ends at the stall limit saying what it waits
+    for, not at the time limit."""
+    from dataclasses import replace
+
+    from pyramid_sim.output.judge import judge
+
+    config = replace(SimConfig(), stall_time=15.0)
+    loop = BuildLoop(prepare(StructureSpec("pyramid", layers=3), config), config)
+    knocked = []
+
+    def knock(loop, data):  # the first placed brick, end to end with the spot 1 cm from it,
+        # once the spot is empty and before the last brick is set on it
+        slots, spot, spawner = loop.custody.knock_watch.slots, loop.plan.spawn, loop.spawner
+        if not knocked and slots and spawner.current is None and spawner.next_slot < 6:
+            turned = [np.cos(spot.yaw / 2), 0.0, 0.0, np.sin(spot.yaw / 2)]
+            end_to_end = spot.y - loop.config.brick.length - 0.01
+            loop.handles.place_brick(data, slots[0], (spot.x, end_to_end, spot.z), turned)
+            knocked.append(data.time)
+
+    result = judge(loop.run(BuildHooks(on_step=knock)), config)
+    assert knocked and not result.success
+    reason = result.failure_reason
+    assert reason.startswith("stalled at t = ")
+    assert "arm waiting for the spawn spot to clear (a brick left on or near it)" in reason
+    assert result.sim_time_s < knocked[0] + 15.0 + 5.0
 
 
 def test_bricks_spawned_off_the_spot_are_still_built():
