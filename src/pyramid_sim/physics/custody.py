@@ -189,8 +189,8 @@ class BrickCustody:
                 f"{drop.describe()}; it came to rest in the spawn spot's way, {across * 1000:.1f} mm "
                 f"across and {height * 1000:.1f} mm up or down from the spot, tilted "
                 f"{math.degrees(tilt):.1f} deg and turned {math.degrees(turn):.1f} deg, too far to be "
-                f"picked again ({ON_SPOT_XY * 1000:g} mm, {ON_SPOT_Z * 1000:g} mm and "
-                f"{math.degrees(ON_SPOT_ANGLE):g} deg beyond the spawn jitter), and no brick can be "
-                f"set on the spot past it: {grip_diagnosis(self.config)}"
+                f"picked again (a pick allows {ON_SPOT_XY * 1000:g} mm across beyond the spawn "
+                f"jitter, {ON_SPOT_Z * 1000:g} mm up or down, {math.degrees(ON_SPOT_ANGLE):g} deg), "
+                f"and no brick can be set on the spot past it: {grip_diagnosis(self.config)}"
             )
             return
