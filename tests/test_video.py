@@ -82,27 +82,34 @@ def test_a_terminated_run_leaves_no_video_behind(tmp_path):
     assert not (tmp_path / "t").exists()  # nor the folder the run made for it
 
 
-def test_ctrl_c_waits_until_the_frame_is_written():
-    """A Ctrl-C during a frame's write is held until the write ends, then raised: ffmpeg never
-    sees a cut frame (it would print its own errors before the run's one line)."""
+@pytest.mark.parametrize("name, raised", [("SIGINT", KeyboardInterrupt), ("SIGTERM", SystemExit)])
+def test_ctrl_c_or_sigterm_waits_until_the_frame_is_written(name, raised):
+    """A Ctrl-C or SIGTERM during a frame's write is held until the write ends, then handled as
+    before: ffmpeg never sees a cut frame (it would print its own errors before the run's one
+    line)."""
     import signal
     import time
 
-    from pyramid_sim.output.video import sigint_held
+    from pyramid_sim.output.video import signals_held
 
+    def exit_on_sigterm(signum, frame):  # as the command line handles it
+        raise SystemExit(128 + signum)
+
+    sig = getattr(signal, name)
+    # Python's own Ctrl-C and the command line's SIGTERM, whatever this process was started
+    # with (a shell's background job ignores SIGINT).
+    handler = signal.default_int_handler if sig == signal.SIGINT else exit_on_sigterm
+    before = signal.signal(sig, handler)
     written = []
-    # Python's own Ctrl-C, whatever this process was started with (a shell's background job
-    # ignores SIGINT).
-    before = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
-        with pytest.raises(KeyboardInterrupt):
-            with sigint_held():
-                os.kill(os.getpid(), signal.SIGINT)
-                time.sleep(0.05)  # an unheld SIGINT would have been raised by now
+        with pytest.raises(raised):
+            with signals_held():
+                os.kill(os.getpid(), sig)
+                time.sleep(0.05)  # an unheld signal would have been handled by now
                 written.append("frame")
-        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # let go again
+        assert signal.getsignal(sig) is handler  # let go again
     finally:
-        signal.signal(signal.SIGINT, before)
+        signal.signal(sig, before)
     assert written == ["frame"]
 
 

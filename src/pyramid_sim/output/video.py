@@ -39,23 +39,30 @@ def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> mujoco.Renderer
     return renderer
 
 
+HELD_SIGNALS = (signal.SIGINT, signal.SIGTERM)  # Ctrl-C, and a run being terminated
+
+
 @contextmanager
-def sigint_held() -> Iterator[None]:
-    """Hold Ctrl-C back until the block ends: a frame cut off halfway down ffmpeg's pipe makes
-    ffmpeg print its own errors (it shares our stderr) before the run's one line. A handler,
-    not a signal mask: the mask is per thread, and numpy's threads would take the signal."""
-    before = signal.getsignal(signal.SIGINT)
-    if threading.current_thread() is not threading.main_thread() or before is None:
-        yield  # only the main thread handles signals; None: a handler Python did not set
+def signals_held() -> Iterator[None]:
+    """Hold Ctrl-C and SIGTERM back until the block ends: a frame cut off halfway down
+    ffmpeg's pipe makes ffmpeg print its own errors (it shares our stderr) before the run's one
+    line. A handler, not a signal mask: the mask is per thread, and numpy's threads would take
+    the signal."""
+    if threading.current_thread() is not threading.main_thread():
+        yield  # only the main thread handles signals
         return
+    before = {s: signal.getsignal(s) for s in HELD_SIGNALS}
+    held = [s for s in HELD_SIGNALS if before[s] is not None]  # None: not set from Python
     caught: list[int] = []
-    signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    for s in held:
+        signal.signal(s, lambda signum, frame: caught.append(signum))
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, before)
-    if caught:
-        signal.raise_signal(signal.SIGINT)  # now, to whatever handled it before
+        for s in held:
+            signal.signal(s, before[s])
+    for s in dict.fromkeys(caught):
+        signal.raise_signal(s)  # now, to whatever handled it before
 
 
 class Recorder:
@@ -90,7 +97,7 @@ class Recorder:
 
     def __call__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         frame = self.render(data)
-        with sigint_held():  # a Ctrl-C lands after the whole frame is written
+        with signals_held():  # a Ctrl-C lands after the whole frame is written
             self.writer.append_data(frame)
         self.frames += 1
         if self.on_frame is not None:
