@@ -56,8 +56,10 @@ def refused(capsys):
 def teleport():
     """Move a brick (by magazine slot) of a running BuildLoop to a position, at rest: how tests
     knock a brick out of a hand or off the structure."""
+    from pyramid_sim.core.poses import yaw_quaternion
 
-    def move(loop, data, slot: int, position: tuple[float, float, float]) -> None:
-        loop.handles.place_brick(data, slot, position)
+    def move(loop, data, slot: int, position: tuple[float, float, float], yaw=None) -> None:
+        """`yaw`: lying flat, turned so; None keeps the brick's orientation."""
+        loop.handles.place_brick(data, slot, position, None if yaw is None else yaw_quaternion(yaw))
 
     return move

@@ -108,7 +108,7 @@ def test_a_dropped_brick_in_the_spawn_spots_way_ends_the_build_at_once_with_its_
     assert result.sim_time_s < knocked[0] + 5.0
 
 
-def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_its_reason():
+def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_its_reason(teleport):
     """A placed brick knocked onto the spawn spot's way is no dropped brick to pick again: the
     next pick waits for the spot, and the build ends at the stall limit saying what it waits
     for, not at the time limit."""
@@ -124,9 +124,8 @@ def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_it
         # once the spot is empty and before the last brick is set on it
         slots, spot, spawner = loop.custody.knock_watch.slots, loop.plan.spawn, loop.spawner
         if not knocked and slots and spawner.current is None and spawner.next_slot < 6:
-            turned = [np.cos(spot.yaw / 2), 0.0, 0.0, np.sin(spot.yaw / 2)]
             end_to_end = spot.y - loop.config.brick.length - 0.01
-            loop.handles.place_brick(data, slots[0], (spot.x, end_to_end, spot.z), turned)
+            teleport(loop, data, slots[0], (spot.x, end_to_end, spot.z), yaw=spot.yaw)
             knocked.append(data.time)
 
     result = judge(loop.run(BuildHooks(on_step=knock)), config)

@@ -100,9 +100,7 @@ def test_a_dropped_brick_at_rest_on_the_spot_is_picked_again_and_one_in_its_way_
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if not knocked and carry is not None and step is not None and step.name == "hover":
             spot = loop.plan.spawn
-            turned = [np.cos(spot.yaw / 2), 0.0, 0.0, np.sin(spot.yaw / 2)]
-            where = (spot.x, spot.y + off_mm / 1000, spot.z)
-            loop.handles.place_brick(data, carry.slot, where, turned)
+            teleport(loop, data, carry.slot, (spot.x, spot.y + off_mm / 1000, spot.z), yaw=spot.yaw)
             knocked.append(data.time)
 
     doc = _run(_two_brick_build(), knock)

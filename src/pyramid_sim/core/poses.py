@@ -60,6 +60,11 @@ def tcp_rotation(yaw: float) -> np.ndarray:
     return np.array([[cy, sy, 0.0], [sy, -cy, 0.0], [0.0, 0.0, -1.0]])
 
 
+def yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
+    """A turn by `yaw` about the vertical as a unit quaternion (w, x, y, z): a brick lying flat."""
+    return (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+
+
 def tcp_quaternion(yaw: float) -> tuple[float, float, float, float]:
     """`tcp_rotation(yaw)` as a unit quaternion (w, x, y, z): Rz(yaw) Rx(pi), worked out."""
     return (0.0, math.cos(yaw / 2), math.sin(yaw / 2), 0.0)

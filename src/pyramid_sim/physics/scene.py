@@ -7,7 +7,6 @@ bricks' friction, as MuJoCo gives a contact the larger of its two geoms'.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,6 +14,7 @@ import mujoco
 import numpy as np
 
 from ..config import SimConfig
+from ..core.poses import yaw_quaternion
 from ..resources import ASSETS
 from ..robots import RobotDescription
 from . import names as c
@@ -62,7 +62,7 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     spec.geom(c.TABLE_GEOM).friction = [config.brick.friction, 0.005, 0.0001]
     spawn = spec.site("spawn_marker")
     spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
-    spawn.quat = _yaw_quat(layout.spawn_yaw)
+    spawn.quat = list(yaw_quaternion(layout.spawn_yaw))
     # Where the next brick will be set: no contact, nothing drawn; the spawner measures how
     # near bricks and arm links are to it.
     jitter = layout.spawn_jitter_mm / 1000.0
@@ -71,7 +71,7 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
         name=c.SPAWN_VOLUME, type=mujoco.mjtGeom.mjGEOM_BOX, contype=0, conaffinity=0, group=5,
         size=[brick.length / 2 + jitter, brick.width / 2 + jitter, brick.height / 2],
         pos=[layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + brick.height / 2],
-        quat=_yaw_quat(layout.spawn_yaw), rgba=[0, 0, 0, 0], mass=0,
+        quat=list(yaw_quaternion(layout.spawn_yaw)), rgba=[0, 0, 0, 0], mass=0,
     )
     robot = add_robot(spec, config)
     if with_bricks:
@@ -86,10 +86,6 @@ def build_scene(config: SimConfig, n_bricks: int) -> Scene:
     """Compile the full scene with a magazine of `n_bricks` bricks."""
     model = build_spec(config, n_bricks).compile()
     return Scene(model=model, n_bricks=n_bricks)
-
-
-def _yaw_quat(yaw: float) -> list[float]:
-    return [math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
 
 
 def write_scene(config: SimConfig, n_bricks: int, path: Path) -> mujoco.MjModel:

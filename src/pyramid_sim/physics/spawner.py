@@ -8,7 +8,7 @@ import math
 import mujoco
 import numpy as np
 
-from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of
+from ..core.poses import Pose, symmetric_yaw_error, tilt_of, yaw_of, yaw_quaternion
 from ..robots import RobotDescription
 from . import names as c
 from .clearance import arm_geoms
@@ -114,7 +114,7 @@ class Spawner:
         offset = self.rng.uniform(-self.jitter, self.jitter, size=2) if self.jitter else (0.0, 0.0)
         self.handles.place_brick(
             data, slot, self.spawn.position + (offset[0], offset[1], 0.0),
-            [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)],
+            yaw_quaternion(yaw),
         )
         self.next_slot += 1
         self.current = slot
