@@ -4,7 +4,6 @@ next from the magazine)."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import mujoco
@@ -22,7 +21,7 @@ from ..core.incidents import (
 from ..core.primitives import Step, StepKind
 from . import names as c
 from .handles import SceneHandles
-from .spawner import ON_SPOT_ANGLE, ON_SPOT_XY, ON_SPOT_Z, Spawner
+from .spawner import Spawner
 
 
 @dataclass
@@ -184,13 +183,9 @@ class BrickCustody:
             if d.body_awake[body] or not self.spawner.in_the_way(d, slot):
                 continue
             drop = next(e for e in reversed(self.drops) if e.slot == slot)
-            across, height, tilt, turn = self.spawner.spot_offset(d, slot)
             self.failure = (
-                f"{drop.describe()}; it came to rest in the spawn spot's way, {across * 1000:.1f} mm "
-                f"across and {height * 1000:.1f} mm up or down from the spot, tilted "
-                f"{math.degrees(tilt):.1f} deg and turned {math.degrees(turn):.1f} deg, too far to be "
-                f"picked again (a pick allows {ON_SPOT_XY * 1000:g} mm across beyond the spawn "
-                f"jitter, {ON_SPOT_Z * 1000:g} mm up or down, {math.degrees(ON_SPOT_ANGLE):g} deg), "
-                f"and no brick can be set on the spot past it: {grip_diagnosis(self.config)}"
+                f"{drop.describe()}; it came to rest in the spawn spot's way, "
+                f"{self.spawner.off_spot(d, slot)}: too far to be picked again, and no brick can be "
+                f"set on the spot past it: {grip_diagnosis(self.config)}"
             )
             return

@@ -98,6 +98,17 @@ class Spawner:
             and tilt <= ON_SPOT_ANGLE and turn <= ON_SPOT_ANGLE
         )
 
+    def off_spot(self, data: mujoco.MjData, slot: int) -> str:
+        """How far the brick in `slot` lies from the spot as spawned, against what a pick
+        allows, in words."""
+        across, height, tilt, turn = self.spot_offset(data, slot)
+        return (
+            f"{across * 1000:.1f} mm across and {height * 1000:.1f} mm up or down from the spot, "
+            f"tilted {math.degrees(tilt):.1f} deg and turned {math.degrees(turn):.1f} deg (a pick "
+            f"allows {ON_SPOT_XY * 1000:g} mm across beyond the spawn jitter, "
+            f"{ON_SPOT_Z * 1000:g} mm up or down, {math.degrees(ON_SPOT_ANGLE):g} deg)"
+        )
+
     def in_the_way(self, data: mujoco.MjData, slot: int) -> bool:
         """Whether the brick in `slot` lies within `clearance` of the spawn volume: no brick
         is set on the spot while it is there."""
