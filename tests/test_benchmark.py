@@ -15,6 +15,8 @@ KEYS = (
     "ik_solve_ms_p99", "render_ms_per_frame_shadows", "render_ms_per_frame_no_shadows",
     "encode_ms_per_frame", "sim_s_per_brick", "bricks_per_hour_sim", "peak_rss_mb",
     "sweep_builds_per_hour_1", "sweep_builds_per_hour_2", "sweep_scaling",
+    "physics_us_per_control_step", "control_us_per_control_step", "control_budget_us",
+    "ik_floor_us_per_control_step",
 )
 
 
@@ -42,6 +44,10 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert figures["replay_matches_build"] is True
     assert figures["ik_solves"] * 5 == figures["build_physics_steps"]  # 100 Hz IK, 500 Hz physics
     assert figures["bricks_per_hour_sim"] == pytest.approx(3600 / figures["sim_s_per_brick"])
+    # The budget is what leaves the build at 0.8 of its physics; the IK's floor is part of the
+    # control step it is measured against.
+    assert figures["control_budget_us"] == pytest.approx(figures["physics_us_per_control_step"] / 4)
+    assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
     assert "| build / bare |" in run.stdout and "| sweep scaling, 2 workers / 1 |" in run.stdout
 
 
@@ -61,3 +67,24 @@ def test_benchmark_refuses_bad_input_in_one_line(args, named, tmp_path):
     assert run.returncode == 2
     assert len(run.stderr.strip().splitlines()) == 1 and named in run.stderr
     assert "Traceback" not in run.stderr
+
+
+def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
+    import time
+    from types import SimpleNamespace
+
+    from pyramid_sim.benchmark import timed_calls
+
+    def inner() -> None:
+        time.sleep(0.02)
+
+    def outer() -> None:
+        owner.inner()
+        time.sleep(0.02)
+
+    owner = SimpleNamespace(inner=inner, outer=outer)
+    with timed_calls([(owner, "inner"), (owner, "outer")]) as spent:
+        owner.outer()
+        owner.inner()
+    assert 0.06 <= spent[0] < 0.2  # outer's 0.04 (inner within it once) and inner's 0.02
+    assert owner.inner is inner and owner.outer is outer
