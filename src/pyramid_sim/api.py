@@ -11,6 +11,7 @@ validated before any physics runs; a bad value raises ConfigError naming its acc
 
 from __future__ import annotations
 
+import sys
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -101,18 +102,15 @@ def build(
 ) -> BuildResult:
     """Build the structure in the physics and return its judged result; `options` as for
     `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
-    headless: the GL backend is chosen here, and a machine without one is refused before any
-    physics runs."""
+    headless, and a machine without a headless GL backend is refused before any physics runs.
+    MuJoCo binds its GL backend when first imported, so the first build chooses one (if the
+    machine has one) even when it does not render: a later build in the process can then."""
     config, spec = _resolve(name, config, options)
     outputs = {".mp4": video, ".png": snapshot}
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:
             raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-    if video is not None or snapshot is not None:
-        from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
-
-        choose_gl_backend()  # effective only if mujoco is not imported yet
-        import_physics_for_rendering()
+    _prepare_gl(render=video is not None or snapshot is not None)
     from .physics.build import prepare, run_build
 
     vc = video_config or VideoConfig()
@@ -121,3 +119,18 @@ def build(
         video=(vc, Path(video)) if video is not None else None,
         snapshot=(vc, Path(snapshot)) if snapshot is not None else None,
     )
+
+
+def _prepare_gl(render: bool) -> None:
+    """Choose the headless GL backend before MuJoCo's first import (a choice made after it has
+    no effect); ConfigError if `render` and none can be had."""
+    from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
+
+    if "mujoco" not in sys.modules:
+        try:
+            choose_gl_backend()
+        except ConfigError:
+            if render:
+                raise
+    if render:
+        import_physics_for_rendering()

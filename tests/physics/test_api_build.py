@@ -42,3 +42,19 @@ def test_rendering_without_opengl_is_refused_before_any_physics(tmp_path):
                               env=env, cwd=tmp_path, timeout=120)
         assert proc.returncode == 0 and proc.stdout.startswith("video:"), proc.stderr
     assert not list(tmp_path.glob("*.mp4"))
+
+
+def test_a_build_that_does_not_render_leaves_a_later_one_able_to(tmp_path):
+    # MuJoCo binds its GL backend on first import: the first build, without video, must already
+    # have chosen a headless one, or the second cannot render.
+    code = (
+        "import pyramid_sim\n"
+        "assert pyramid_sim.build('pyramid', layers=1).success\n"
+        f"result = pyramid_sim.build('pyramid', layers=1, snapshot={str(tmp_path / 's.png')!r})\n"
+        "print(result.success)\n"
+    )
+    env = {"PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}  # no MUJOCO_GL
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=env, cwd=tmp_path, timeout=300)
+    assert proc.returncode == 0 and proc.stdout.strip() == "True", proc.stderr
+    assert (tmp_path / "s.png").stat().st_size > 1000
