@@ -36,6 +36,16 @@ def test_plan_refuses_what_build_would(capsys, refused):
 
 
 @pytest.mark.physics
+def test_the_size_suggested_for_an_unreachable_wall_is_whole_and_accepted(capsys, refused):
+    # A wall is sized by its width at three courses: the bricks asked for change with it.
+    err = refused(["plan", "--structure", "wall", "--wall-width", "7", "--bricks", "22"])
+    assert "the largest reachable is width 6 (bricks=19 width=6)" in err
+    assert main(["plan", "--structure", "wall", "--wall-width", "6", "--bricks", "19"]) == 0
+    err = refused(["plan", "--structure", "towers", "--towers", "4", "--layers", "6"])
+    assert "no towers value brings towers with layers=6 within reach" in err
+
+
+@pytest.mark.physics
 @pytest.mark.parametrize("suffix", [".mjb", ".xml"])
 def test_the_scene_a_build_runs_is_written_for_inspection(tmp_path, capsys, suffix):
     import mujoco

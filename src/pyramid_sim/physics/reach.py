@@ -121,8 +121,13 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
             raise ConfigError(f"goals: {what} is out of reach: {err}") from None
         knob = SIZE_KNOB[spec.name]
         best = checker.largest(spec, plan.arms, below=getattr(spec, knob))
-        largest = f"the largest reachable is {knob} {best}" if best else (
-            f"no {knob} of {spec.name} is within reach of the {config.robot} robot"
+        # The size as `largest` tried it: the other options can change with the knob (a wall
+        # keeps three courses), so the whole size is named.
+        largest = (
+            f"the largest reachable is {knob} {best} ({resized(spec, knob, best).size_text()})"
+            if best else
+            f"no {knob} value brings {spec.name} with {held_fixed(spec)} within reach of "
+            f"the {config.robot} robot"
         )
         raise ConfigError(
             f"{knob}: {what} is out of reach ({err}); {largest}"
