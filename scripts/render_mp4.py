@@ -7,14 +7,18 @@ import sys
 from pathlib import Path
 
 from pyramid_sim.cli import main
+from pyramid_sim.cli.args import Parser
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "runs/render"]
-    if "--video" not in args:
-        video = Path(args[args.index("--out") + 1]) / "build.mp4"
-        args += ["--video", str(video)]
-        if video.exists():
+    # Only --out and --video are read here (in any of argparse's spellings); build checks the rest.
+    paths = Parser(prog="render_mp4.py", add_help=False)
+    paths.add_argument("--out", default="runs/render")
+    paths.add_argument("--video")
+    known, _ = paths.parse_known_args(args)
+    if known.video is None:
+        video = Path(known.out) / "build.mp4"
+        if not {"-h", "--help"} & set(args) and video.exists():
             print(f"render_mp4.py: {video} exists and will be replaced", file=sys.stderr)
-    sys.exit(main(["build", *args]))
+        args = ["--video", str(video), *args]
+    sys.exit(main(["build", "--out", known.out, *args]))

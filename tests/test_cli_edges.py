@@ -3,11 +3,14 @@ measured nothing, plans that build would refuse, and the scene written for inspe
 
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 import pyramid_sim
 from pyramid_sim.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_version(capsys):
@@ -77,3 +80,13 @@ def test_a_sweep_whose_every_run_timed_out_fails(tmp_path):
 def test_an_unknown_robot_is_one_line_listing_the_presets(refused):
     err = refused(["build", "--robot", "kuka"])
     assert "robot: unknown 'kuka'; accepted panda, baxter" in err
+
+
+def test_render_script_refuses_an_out_without_a_folder_in_one_line(tmp_path):
+    script = ROOT / "scripts" / "render_mp4.py"
+    proc = subprocess.run([sys.executable, str(script), "--layers", "1", "--out"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    assert proc.returncode == 2 and proc.stderr.strip().splitlines() == [
+        "render_mp4.py: error: argument --out: expected one argument"
+    ]
+    assert list(tmp_path.iterdir()) == []
