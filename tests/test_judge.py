@@ -63,3 +63,17 @@ def test_the_slip_limit_is_a_setting():
     assert "slip" in judge(_measured(), strict).failed_checks
     with pytest.raises(pyramid_sim.ConfigError, match="slip limit"):
         replace(CONFIG, slip_limit_mm=0.0)
+
+
+def test_docs_name_every_field_a_result_writes():
+    from dataclasses import fields
+    from pathlib import Path
+
+    from pyramid_sim.output.result import BrickResult, BuildInputs, BuildResult, VideoInfo
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
+    doc = judge(_measured(), CONFIG).to_json()
+    names = {*doc, *doc["bricks"][0], *doc["inputs"], *doc["checks"]}
+    names |= {f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)}
+    missing = sorted(n for n in names if f"`{n}`" not in text)
+    assert not missing, f"docs/outputs.md does not name {missing}"
