@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Benchmark: bare physics, the headless build, IK, rendering and sweeps, in one run.
 
-    python benchmarks/run.py [--json PATH] [--layers N] [--frames N] [--sweep-builds N]
-                             [--sweep-rounds N]
+    python benchmarks/run.py [--json PATH] [--layers N] [--robot NAME] [--frames N]
+                             [--sweep-builds N] [--sweep-rounds N]
 
 Prints a table of every figure against its target; `--json` also writes the figures.
 Targets are reported, never asserted: these machines are too noisy for timed tests.

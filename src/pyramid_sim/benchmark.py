@@ -1,7 +1,8 @@
 """Throughput figures of one machine, measured in one process and one run (benchmarks/run.py).
 
-Every rate is set against the bare physics of the same model measured in the same run, because
-these machines are noisy: two runs minutes apart differ by up to 2x in absolute speed.
+Every rate is set against physics measured in the same run (the bare step on the same model, and
+the build's own physics replayed alone), because these machines are noisy: two runs minutes
+apart differ by up to 2x in absolute speed.
 """
 
 from __future__ import annotations
