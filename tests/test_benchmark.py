@@ -48,6 +48,8 @@ def test_benchmark_reports_every_figure(tmp_path):
     # control step it is measured against.
     assert figures["control_budget_us"] == pytest.approx(figures["physics_us_per_control_step"] / 4)
     assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
+    # The seconds-a-brick targets are the 20-brick pyramid's: not judged on this 2-brick one.
+    assert "| simulated s per brick | " in run.stdout and "| not this build |" in run.stdout
     assert "| build / bare |" in run.stdout and "| sweep scaling, 2 workers / 1 |" in run.stdout
 
 
@@ -88,3 +90,14 @@ def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
         owner.inner()
     assert 0.06 <= spent[0] < 0.2  # outer's 0.04 (inner within it once) and inner's 0.02
     assert owner.inner is inner and owner.outer is outer
+
+
+def test_a_build_size_target_is_judged_on_that_build_only():
+    from pyramid_sim.benchmark import DEFAULT_STRUCTURE, TARGETS
+
+    (lockstep,) = [t for t in TARGETS if t.key == "sim_s_per_brick"]
+    figures = {"structure": DEFAULT_STRUCTURE, "robot": "panda", "sim_s_per_brick": 12.83}
+    assert lockstep.met(figures) is True
+    assert lockstep.met({**figures, "sim_s_per_brick": 13.1}) is False
+    assert lockstep.met({**figures, "structure": "pyramid-even layers=1"}) is None
+    assert lockstep.met({**figures, "robot": "baxter"}) is None

@@ -69,7 +69,12 @@ def test_docs_name_every_field_a_result_writes():
     from dataclasses import fields
     from pathlib import Path
 
-    from pyramid_sim.output.result import BrickResult, BuildInputs, BuildResult, VideoInfo
+    from pyramid_sim.output.result import (
+        BrickResult,
+        BuildInputs,
+        BuildResult,
+        VideoInfo,
+    )
 
     text = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
     doc = judge(_measured(), CONFIG).to_json()
