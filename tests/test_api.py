@@ -44,6 +44,14 @@ def test_bad_settings_raise_one_config_error(kwargs, words):
     assert isinstance(err.value, pyramid_sim.PyramidSimError)
 
 
+def test_an_unknown_keyword_names_every_keyword_the_function_takes():
+    with pytest.raises(pyramid_sim.ConfigError) as err:
+        pyramid_sim.build("pyramid", colour=1)  # refused before any physics
+    for name in ("friction", "schedule", "config", "layers", "goals", "arms", "video",
+                 "snapshot", "video_config"):
+        assert name in str(err.value).split("accepted", 1)[1]
+
+
 def test_build_refuses_a_wrong_video_suffix_before_any_physics():
     with pytest.raises(pyramid_sim.ConfigError, match="must end in .mp4"):
         pyramid_sim.build("pyramid", layers=1, video="out/build.avi")

@@ -71,11 +71,17 @@ def structure(
     )
 
 
-def _resolve(name: str, config: SimConfig | None, options: dict[str, Any]) -> tuple[SimConfig, StructureSpec]:
+def _resolve(
+    name: str, config: SimConfig | None, options: dict[str, Any], own: tuple[str, ...]
+) -> tuple[SimConfig, StructureSpec]:
     """Settings and structure from one set of keywords: the size options (SIZE_KEYWORDS) go
-    to the structure, the rest are settings."""
+    to the structure, the rest are settings. An unknown keyword's error also names the size
+    options and the caller's `own` keywords."""
     sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
-    config = settings(config, **options)
+    try:
+        config = settings(config, **options)
+    except ConfigError as err:
+        raise ConfigError(f"{err}, {', '.join(SIZE_KEYWORDS + own)}") from None
     return config, structure(name, config=config, **sizes)
 
 
@@ -86,7 +92,7 @@ def plan(
     """The build plan: every brick's target, arm and order, and the spawn pose. `options` are
     the structure's size (layers, bricks, width, towers, goals) and settings. No physics (and
     no reach check: `build` does that)."""
-    config, spec = _resolve(name, config, options)
+    config, spec = _resolve(name, config, options, own=("arms",))
     return make_plan(spec, config, arms)
 
 
@@ -105,7 +111,9 @@ def build(
     headless, and a machine without a headless GL backend is refused before any physics runs.
     MuJoCo binds its GL backend when first imported, so the first build chooses one (if the
     machine has one) even when it does not render: a later build in the process can then."""
-    config, spec = _resolve(name, config, options)
+    config, spec = _resolve(
+        name, config, options, own=("arms", "video", "snapshot", "video_config")
+    )
     outputs = {".mp4": video, ".png": snapshot}
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:

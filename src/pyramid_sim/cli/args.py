@@ -109,7 +109,8 @@ def add_structure_args(p: argparse.ArgumentParser) -> None:
                    help="list: place goals, JSON or CSV of x, y, z, yaw (examples in "
                         "pyramid_sim/assets/goals/)")
     p.add_argument("--arms", type=one_of("arms", ARM_CHOICES), default="both",
-                   help="both (the seed's lockstep) or one arm building alone (default both)")
+                   help="both (the bricks split between the arms, as the seed's) or one arm "
+                        "building alone (default both)")
 
 
 def add_physics_args(p: argparse.ArgumentParser) -> None:
@@ -164,8 +165,10 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
                    help="runs at once (default: the CPU count)")
     p.add_argument("--timeout", type=number("timeout"), default=900.0,
                    help="seconds a run may take before it is stopped and failed (default 900)")
-    p.add_argument("--backend", type=one_of("backend", ("process", "ray")), default="process")
-    p.add_argument("--ray-address", help="an existing Ray cluster (default: start one here)")
+    p.add_argument("--backend", type=one_of("backend", ("process", "ray")), default="process",
+                   help="process (worker processes on this machine, default) or ray")
+    p.add_argument("--ray-address", help="with --backend ray: an existing Ray cluster (default: "
+                   "start one here)")
     p.add_argument("--out", type=Path, default=Path("runs/sweep"), help="output folder")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 

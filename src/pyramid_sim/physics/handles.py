@@ -3,6 +3,8 @@ monitors and the tests all index MjData through these."""
 
 from __future__ import annotations
 
+from typing import Sequence
+
 import mujoco
 import numpy as np
 
@@ -49,7 +51,10 @@ class SceneHandles:
     def n_bricks(self) -> int:
         return len(self.brick_body)
 
-    def place_brick(self, data: mujoco.MjData, slot: int, position, quat=None) -> None:
+    def place_brick(
+        self, data: mujoco.MjData, slot: int, position: Sequence[float],
+        quat: Sequence[float] | None = None,
+    ) -> None:
         """Put the brick in `slot` at `position` (and `quat`), at rest."""
         q, v = self.brick_qpos[slot], self.brick_dofs[slot]
         data.qpos[q : q + 3] = position

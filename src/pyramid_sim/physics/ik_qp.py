@@ -103,7 +103,9 @@ class BrakingCollisionLimit(mink.Limit):
     modest `ARM_BRAKING` (the same test: the links stay 49.8 mm apart; mink's own bound, with
     the acceleration bounds in the QP, 43.5 mm)."""
 
-    def __init__(self, model: mujoco.MjModel, pairs: list, minimum: float) -> None:
+    def __init__(
+        self, model: mujoco.MjModel, pairs: list[tuple[list[int], list[int]]], minimum: float
+    ) -> None:
         # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
         self.limit = mink.CollisionAvoidanceLimit(
             model, pairs, gain=1.0, minimum_distance_from_collisions=minimum,
@@ -113,7 +115,10 @@ class BrakingCollisionLimit(mink.Limit):
         self.gaps = PairGaps(model, geoms[:, 0], geoms[:, 1])
         self._no_rows = (np.zeros((0, model.nv)), np.zeros(0))
 
-    def compute_qp_inequalities(self, configuration: mink.Configuration, dt: float):
+    def compute_qp_inequalities(
+        self, configuration: mink.Configuration, dt: float
+    ) -> mink.limits.Constraint:
+        """mink's rows with each bound reshaped to the braking speed over the gap left."""
         constraint = self.limit.compute_qp_inequalities(configuration, 1.0)
         gap = np.maximum(constraint.h, 0.0)
         return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
