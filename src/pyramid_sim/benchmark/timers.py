@@ -1,0 +1,49 @@
+"""Timers wrapped round named calls for one measured stretch, and the IK's floor: the calls
+it makes every control step while mink is the source of its tasks."""
+
+from __future__ import annotations
+
+import time
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator
+
+
+def ik_floor_calls() -> list[tuple[Any, str]]:
+    """What the IK calls on every control step and cannot do without while mink is the source
+    of its tasks: mink's terms of the two frame tasks and the posture task, the configuration's
+    kinematics and integration, and daqp's solve."""
+    import daqp
+    import mink
+
+    return [
+        (mink.FrameTask, "compute_qp_residual"), (mink.PostureTask, "compute_error"),
+        (mink.Configuration, "update"), (mink.Configuration, "integrate"), (daqp, "solve"),
+    ]
+
+
+@contextmanager
+def timed_calls(calls: list[tuple[Any, str]]) -> Iterator[list[float]]:
+    """Wrap each `(owner, name)` attribute in a timer while inside; yields the seconds spent in
+    them (a call within a timed call counts once), restored on the way out."""
+    spent, depth = [0.0], [0]
+
+    def timed(function: Callable[..., Any]) -> Callable[..., Any]:
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            depth[0] += 1
+            start = time.perf_counter()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                depth[0] -= 1
+                if depth[0] == 0:
+                    spent[0] += time.perf_counter() - start
+        return wrapper
+
+    originals = [(owner, name, getattr(owner, name)) for owner, name in calls]
+    for owner, name, function in originals:
+        setattr(owner, name, timed(function))
+    try:
+        yield spent
+    finally:
+        for owner, name, function in originals:
+            setattr(owner, name, function)
