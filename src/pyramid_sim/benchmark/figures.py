@@ -52,8 +52,6 @@ class BenchConfig:
         return StructureSpec("pyramid-even", layers=self.layers)
 
 
-
-
 def bare_rate(config: SimConfig, spec: StructureSpec, seconds: float) -> float:
     """Steps per second of `mj_step` alone on the build's own scene (both arms, table, magazine
     of bricks) from the build's start state, controls held: the limit a build can approach.
@@ -141,14 +139,13 @@ def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any
     return figures, loop
 
 
-
-
 def control_step_figures(
     config: SimConfig, spec: StructureSpec, figures: dict[str, Any]
 ) -> dict[str, float]:
     """The control step's cost against what the build-to-replay target allows it (at 0.8, a
-    quarter of the physics it drives), from the build's and the replay's rates; and, in a second build
-    with timers round them, what the IK's unavoidable calls (`ik_floor_calls`) cost of it."""
+    quarter of the physics it drives), from the build's and the replay's rates; and, in a
+    second build with timers round them, what the IK's unavoidable calls (`ik_floor_calls`)
+    cost of it."""
     substeps = config.substeps
     physics_us = substeps * 1e6 / figures["replay_steps_per_s"]
     loop = BuildLoop(prepare(spec, config), config)
