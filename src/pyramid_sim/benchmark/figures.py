@@ -23,7 +23,7 @@ from ..physics.loop import BuildLoop
 from ..robots import DEFAULT_ROBOT
 from ..sweep.grid import RunSpec
 from ..sweep.runner import RunResult, run_processes
-from .targets import BUILD_TO_REPLAY
+from .targets import BUILD_TO_REPLAY, structure_label
 from .timers import ik_floor_calls, timed_calls
 
 Progress = Callable[[str], None]
@@ -208,7 +208,7 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     config = SimConfig(robot=bench.robot)
     spec = bench.structure
     figures: dict[str, Any] = {
-        "structure": f"pyramid-even layers={bench.layers}", "robot": bench.robot,
+        "structure": structure_label(spec), "robot": bench.robot,
     }
     progress("bare physics")
     figures["bare_steps_per_s"] = bare_rate(config, spec, bench.bare_seconds)

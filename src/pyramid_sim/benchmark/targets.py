@@ -5,9 +5,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from ..core.structures import StructureSpec
 from ..robots import DEFAULT_ROBOT
 
-DEFAULT_STRUCTURE = "pyramid-even layers=4"  # the 20-brick pyramid the seed's figures are for
+
+def structure_label(spec: StructureSpec) -> str:
+    """How the figures name the structure built, and a target the structure it is for."""
+    return f"{spec.name} {spec.size_text()}"
+
+
+# The 20-brick pyramid the seed's figures are for.
+DEFAULT_STRUCTURE = structure_label(StructureSpec("pyramid-even", layers=4))
 
 
 @dataclass(frozen=True)
