@@ -9,16 +9,24 @@ from pathlib import Path
 from pyramid_sim.cli import main
 from pyramid_sim.cli.args import Parser
 
-if __name__ == "__main__":
-    args = sys.argv[1:]
-    # Only --out and --video are read here (in any of argparse's spellings); build checks the rest.
+
+def build_args(args: list[str]) -> tuple[list[str], Path | None]:
+    """The `build` command line for these options, and the video it will write when this
+    script chose the path. Only --out and --video are read here (in any of argparse's
+    spellings); build checks the rest."""
     paths = Parser(prog="render_mp4.py", add_help=False)
     paths.add_argument("--out", default="runs/render")
     paths.add_argument("--video")
     known, _ = paths.parse_known_args(args)
-    if known.video is None:
-        video = Path(known.out) / "build.mp4"
-        if not {"-h", "--help"} & set(args) and video.exists():
-            print(f"render_mp4.py: {video} exists and will be replaced", file=sys.stderr)
-        args = ["--video", str(video), *args]
-    sys.exit(main(["build", "--out", known.out, *args]))
+    if known.video is not None:
+        return ["build", "--out", known.out, *args], None
+    video = Path(known.out) / "build.mp4"
+    return ["build", "--out", known.out, "--video", str(video), *args], video
+
+
+if __name__ == "__main__":
+    argv = sys.argv[1:]
+    command, video = build_args(argv)
+    if video is not None and not {"-h", "--help"} & set(argv) and video.exists():
+        print(f"render_mp4.py: {video} exists and will be replaced", file=sys.stderr)
+    sys.exit(main(command))

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import pyramid_sim
-from pyramid_sim.cli import main
+from pyramid_sim.cli import main, make_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -90,3 +90,23 @@ def test_render_script_refuses_an_out_without_a_folder_in_one_line(tmp_path):
         "render_mp4.py: error: argument --out: expected one argument"
     ]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "args, out, video",
+    [
+        ([], "runs/render", "runs/render/build.mp4"),
+        (["--out=runs/a"], "runs/a", "runs/a/build.mp4"),
+        (["--out", "runs/b", "--layers", "1"], "runs/b", "runs/b/build.mp4"),
+        (["--out", "runs/c", "--video=films/c.mp4"], "runs/c", "films/c.mp4"),
+    ],
+)
+def test_render_script_writes_where_it_is_told_in_any_spelling(args, out, video):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("render_mp4", ROOT / "scripts" / "render_mp4.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    command, _ = script.build_args(args)
+    parsed = make_parser().parse_args(command)  # the CLI reads it: the last --out wins
+    assert (str(parsed.out), str(parsed.video)) == (out, video)
