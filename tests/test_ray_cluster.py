@@ -1,14 +1,16 @@
 """`pyramid-sim sweep --backend ray --ray-address` against a real two-node Ray cluster.
 
-The cluster is started the way users start one, with `ray start --head` and then
-`ray start --address` for a second node, both on this machine, each with one CPU. Ray 2.60 and
-later turn on token authentication for such a cluster: a node or client joins it only with
-RAY_AUTH_MODE=token set (the token is in ~/.ray/auth_token). A sweep with it set runs its two
-builds on the two nodes; one without it is told, in one line, to set it.
+The cluster is started as the README's recipe says, on a head that has never run Ray: a token
+made with `ray get-auth-token --generate`, then `ray start --head` and `ray start --address` for a
+second node, both on this machine with one CPU each, every command with RAY_AUTH_MODE=token. A
+sweep with it set runs its two builds on the two nodes; a client elsewhere (no token, no
+RAY_AUTH_MODE) is told, in one line, what to set.
 
-Each `ray start` runs in a session of its own, so the Ray processes it leaves behind (GCS, raylet,
-agents, workers) are exactly the processes of that session: the finalizer stops those (and any
-process naming this cluster's temporary folder), never another Ray on the machine.
+Every Ray process runs with HOME and RAY_TMPDIR in this module's own temporary folders, so the
+token and Ray's session files land there and go with them, whatever the user's own ~/.ray holds.
+Each `ray start` runs in a session of its own, so the Ray processes it leaves behind (GCS,
+raylet, agents, workers) are exactly the processes of that session: the finalizer stops those
+(and any process naming this cluster's temporary folder), never another Ray on the machine.
 """
 
 from __future__ import annotations
@@ -64,11 +66,12 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-def _env(token: bool) -> dict[str, str]:
-    """This process's environment without Ray settings; RAY_AUTH_MODE=token if `token`. Usage
-    statistics are off: nothing here may contact another host."""
+def _env(home: Path, temp_dir: str, token: bool) -> dict[str, str]:
+    """This process's environment without Ray settings, with `home` as HOME and Ray's
+    temporary files in `temp_dir`; RAY_AUTH_MODE=token if `token`. Usage statistics are off:
+    nothing here may contact another host."""
     env = {k: v for k, v in os.environ.items() if k not in RAY_SETTINGS}
-    env["RAY_USAGE_STATS_ENABLED"] = "0"
+    env.update(HOME=str(home), RAY_TMPDIR=temp_dir, RAY_USAGE_STATS_ENABLED="0")
     if token:
         env["RAY_AUTH_MODE"] = "token"
     return env
@@ -125,8 +128,9 @@ def _stop(sessions: set[int], temp_dir: str) -> None:
     raise RuntimeError(f"Ray processes of the test cluster still running: {pids}")
 
 
-def _start(ray: str, args: list[str], env: dict[str, str], sessions: set[int]) -> str:
-    proc = subprocess.Popen([ray, "start", *args], env=env, start_new_session=True, text=True,
+def _ray(ray: str, args: list[str], env: dict[str, str], sessions: set[int]) -> str:
+    """`ray ARGS` in a session of its own; what it printed."""
+    proc = subprocess.Popen([ray, *args], env=env, start_new_session=True, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     sessions.add(proc.pid)  # its session id: the daemons it leaves keep it
     try:
@@ -134,17 +138,17 @@ def _start(ray: str, args: list[str], env: dict[str, str], sessions: set[int]) -
     except subprocess.TimeoutExpired:
         proc.kill()
         out, _ = proc.communicate()
-    assert proc.returncode == 0, f"ray start {' '.join(args)} failed:\n{out}"
+    assert proc.returncode == 0, f"ray {' '.join(args)} failed:\n{out}"
     return out
 
 
-def _alive_nodes(address: str, count: int) -> list[dict]:
+def _alive_nodes(address: str, count: int, env: dict[str, str]) -> list[dict]:
     """The cluster's alive nodes, as a client with RAY_AUTH_MODE=token sees them, once there
     are `count` of them (or after 60 s)."""
     deadline = time.monotonic() + 60
     while True:
         done = subprocess.run([sys.executable, "-c", _NODES_SCRIPT, address], check=False,
-                              env=_env(token=True), capture_output=True, text=True, timeout=120)
+                              env=env, capture_output=True, text=True, timeout=120)
         lines = [ln for ln in done.stdout.splitlines() if ln.startswith("NODES ")]
         nodes = json.loads(lines[-1][6:]) if done.returncode == 0 and lines else []
         if len(nodes) >= count or time.monotonic() > deadline:
@@ -153,25 +157,29 @@ def _alive_nodes(address: str, count: int) -> list[dict]:
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    """A head and a worker node on this machine, one CPU each; yields its address (as a user
-    on the head types it), its nodes before any sweep, its temporary folder and what `ray start
-    --head` printed."""
+def cluster(tmp_path_factory):
+    """A head and a worker node on this machine, one CPU each, started by the README's recipe
+    on a head that has never run Ray; yields its address (as a user on the head types it), its
+    nodes before any sweep, its temporary folder, the head's HOME and what `ray start --head`
+    printed."""
     ray = _ray_cli()
+    home = tmp_path_factory.mktemp("head-home")  # empty: this head has never run Ray
     temp_dir = tempfile.mkdtemp(prefix="rc", dir="/tmp")  # short: Ray's socket paths live in it
     sessions: set[int] = set()
     port = _free_port()
     address = f"127.0.0.1:{port}"
+    env = _env(home, temp_dir, token=True)
     common = ["--node-ip-address=127.0.0.1", "--num-cpus=1", f"--temp-dir={temp_dir}",
               "--object-store-memory=200000000", "--disable-usage-stats"]
     try:
-        # The head as a user starts it: no RAY_AUTH_MODE, Ray turns token authentication on.
-        head_out = _start(ray, ["--head", f"--port={port}", "--include-dashboard=false", *common],
-                          _env(token=False), sessions)
-        # A node joins a token cluster only with RAY_AUTH_MODE=token (as Ray's docs say).
-        _start(ray, [f"--address={address}", *common], _env(token=True), sessions)
-        nodes = _alive_nodes(address, 2)
-        yield {"address": address, "nodes": nodes, "temp_dir": Path(temp_dir), "head_out": head_out}
+        _ray(ray, ["get-auth-token", "--generate"], env, sessions)
+        assert (home / ".ray" / "auth_token").read_text().strip(), "no token was made"
+        head_out = _ray(ray, ["start", "--head", f"--port={port}", "--include-dashboard=false",
+                              *common], env, sessions)
+        _ray(ray, ["start", f"--address={address}", *common], env, sessions)
+        nodes = _alive_nodes(address, 2, env)
+        yield {"address": address, "nodes": nodes, "temp_dir": Path(temp_dir), "home": home,
+               "head_out": head_out}
     finally:
         try:
             _stop(sessions, temp_dir)
@@ -209,7 +217,8 @@ def test_a_sweep_runs_on_a_two_node_cluster_started_with_ray_start(cluster, tmp_
     assert len(nodes) == 2, f"two alive nodes before the sweep, not {nodes}:\n{cluster['head_out']}"
     assert [n["cpus"] for n in nodes] == [1.0, 1.0], nodes
     out = tmp_path / "sweep"
-    done = _sweep(cluster["address"], out, _env(token=True))
+    env = _env(cluster["home"], str(cluster["temp_dir"]), token=True)
+    done = _sweep(cluster["address"], out, env)
     assert done.returncode == 0, done.stderr
     assert "2/2 builds succeeded" in done.stdout, done.stdout
     rows = _rows(out / "sweep.csv")
@@ -227,11 +236,12 @@ def test_a_sweep_runs_on_a_two_node_cluster_started_with_ray_start(cluster, tmp_
 
 @pytest.fixture(scope="module")
 def tokenless(cluster, tmp_path_factory):
-    """The same sweep from a client without RAY_AUTH_MODE (about 20 s: Ray retries, then gives
-    up), its output folder and how long it took."""
+    """The same sweep from a client elsewhere, with neither the token nor RAY_AUTH_MODE (about
+    20 s: Ray retries, then gives up), its output folder and how long it took."""
     out = tmp_path_factory.mktemp("tokenless") / "sweep"
+    elsewhere = tmp_path_factory.mktemp("client-home")
     start = time.monotonic()
-    done = _sweep(cluster["address"], out, _env(token=False))
+    done = _sweep(cluster["address"], out, _env(elsewhere, str(cluster["temp_dir"]), token=False))
     return done, out, time.monotonic() - start
 
 

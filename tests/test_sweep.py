@@ -8,6 +8,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -171,11 +172,17 @@ def test_a_killed_sweep_resumes_to_exactly_one_row_per_run(tmp_path):
 
 @pytest.mark.physics
 def test_ray_gives_the_same_rows_as_processes(tmp_path):
+    """The local Ray instance writes its token under HOME and its session under RAY_TMPDIR:
+    both are this test's own folders (the session's sockets need a short path)."""
     grid = ["--grip-force", "1,20", "--workers", "2"]
-    for backend in ("process", "ray"):
-        done = subprocess.run(_sweep_cmd(tmp_path / backend, *grid, "--backend", backend),
-                              capture_output=True, text=True, timeout=600)
-        assert done.returncode == 0, done.stderr
+    env = {k: v for k, v in os.environ.items() if not k.startswith("RAY_")}
+    env.update(HOME=str(tmp_path / "home"), RAY_USAGE_STATS_ENABLED="0")
+    with tempfile.TemporaryDirectory(prefix="ray", dir="/tmp") as ray_tmp:
+        env["RAY_TMPDIR"] = ray_tmp
+        for backend in ("process", "ray"):
+            done = subprocess.run(_sweep_cmd(tmp_path / backend, *grid, "--backend", backend),
+                                  capture_output=True, text=True, timeout=600, env=env)
+            assert done.returncode == 0, done.stderr
     rows = {}
     for backend in ("process", "ray"):
         table = _csv_rows(tmp_path / backend / "sweep.csv")
