@@ -55,3 +55,20 @@ def test_an_unknown_keyword_names_every_keyword_the_function_takes():
 def test_build_refuses_a_wrong_video_suffix_before_any_physics():
     with pytest.raises(pyramid_sim.ConfigError, match="must end in .mp4"):
         pyramid_sim.build("pyramid", layers=1, video="out/build.avi")
+
+
+@pytest.mark.parametrize(
+    "kwargs, flags",
+    [
+        ({"friction": -1}, ["--friction", "-1"]),
+        ({"brick_mass": float("nan")}, ["--brick-mass", "nan"]),
+        ({"layers": 99}, ["--layers", "99"]),
+        ({"grip_force": 0}, ["--grip-force", "0"]),
+    ],
+)
+def test_a_bad_value_reads_the_same_through_the_api_as_on_the_command_line(kwargs, flags, refused):
+    with pytest.raises(pyramid_sim.ConfigError) as err:
+        pyramid_sim.plan("pyramid", **kwargs)
+    line = refused(["plan", "--structure", "pyramid", *flags])
+    assert line.strip() == f"pyramid-sim: error: {err.value}"
+

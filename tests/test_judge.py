@@ -55,7 +55,7 @@ def test_each_check_fails_the_build_and_is_named(changes, check, words):
     assert not result.success and check in result.failed_checks
     assert result.checks[check] is False
     assert words in result.failure_reason
-    assert result.to_json()["failed_checks"] == list(result.failed_checks)
+    assert result.to_dict()["failed_checks"] == list(result.failed_checks)
 
 
 def test_the_slip_limit_is_a_setting():
@@ -77,7 +77,7 @@ def test_docs_name_every_field_a_result_writes():
     )
 
     text = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
-    doc = judge(_measured(), CONFIG).to_json()
+    doc = judge(_measured(), CONFIG).to_dict()
     names = {*doc, *doc["bricks"][0], *doc["inputs"], *doc["checks"]}
     names |= {f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)}
     missing = sorted(n for n in names if f"`{n}`" not in text)

@@ -11,7 +11,6 @@ validated before any physics runs; a bad value raises ConfigError naming its acc
 
 from __future__ import annotations
 
-import sys
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -29,18 +28,25 @@ RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot", "schedule")
 def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
     """`config` (default SimConfig()) with the named settings applied; ConfigError for a name
     that is not a setting, listing those that are."""
+    _refuse_unknown(values, ())
     config = config or SimConfig()
     for name, value in values.items():
         if name in BY_NAME:
             config = BY_NAME[name].apply(config, value)
         elif name == "spawn_jitter_mm":
             config = replace(config, layout=replace(config.layout, spawn_jitter_mm=value))
-        elif name in ("seed", "robot", "schedule"):
-            config = replace(config, **{name: value})
         else:
-            accepted = ", ".join([*BY_NAME, *RUN_SETTINGS, "config"])
-            raise ConfigError(f"setting: unknown {name!r}; accepted {accepted}")
+            config = replace(config, **{name: value})
     return config
+
+
+def _refuse_unknown(values: dict[str, Any], also: tuple[str, ...]) -> None:
+    """ConfigError naming the first keyword that is neither a setting nor one of `also`, and
+    every keyword accepted."""
+    accepted = (*BY_NAME, *RUN_SETTINGS, "config", *also)
+    for name in values:
+        if name not in accepted:
+            raise ConfigError(f"setting: unknown {name!r}; accepted {', '.join(accepted)}")
 
 
 SIZE_KEYWORDS = ("layers", "bricks", "width", "towers", "goals")
@@ -75,13 +81,12 @@ def _resolve(
     name: str, config: SimConfig | None, options: dict[str, Any], own: tuple[str, ...]
 ) -> tuple[SimConfig, StructureSpec]:
     """Settings and structure from one set of keywords: the size options (SIZE_KEYWORDS) go
-    to the structure, the rest are settings. An unknown keyword's error also names the size
-    options and the caller's `own` keywords."""
+    to the structure, the rest are settings. An unknown keyword's error names every keyword the
+    caller takes (settings, size options and its `own`); a bad value's error is the one line
+    the command line gives."""
+    _refuse_unknown(options, SIZE_KEYWORDS + own)
     sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
-    try:
-        config = settings(config, **options)
-    except ConfigError as err:
-        raise ConfigError(f"{err}, {', '.join(SIZE_KEYWORDS + own)}") from None
+    config = settings(config, **options)
     return config, structure(name, config=config, **sizes)
 
 
@@ -108,9 +113,8 @@ def build(
 ) -> BuildResult:
     """Build the structure in the physics and return its judged result; `options` as for
     `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
-    headless, and a machine without a headless GL backend is refused before any physics runs.
-    MuJoCo binds its GL backend when first imported, so the first build chooses one (if the
-    machine has one) even when it does not render: a later build in the process can then."""
+    headless (whether or not MuJoCo was imported first), and a machine without a headless GL
+    backend is refused before any physics runs."""
     config, spec = _resolve(
         name, config, options, own=("arms", "video", "snapshot", "video_config")
     )
@@ -130,15 +134,15 @@ def build(
 
 
 def _prepare_gl(render: bool) -> None:
-    """Choose the headless GL backend before MuJoCo's first import (a choice made after it has
-    no effect); ConfigError if `render` and none can be had."""
+    """Choose the headless GL backend: before MuJoCo's first import it is the backend MuJoCo
+    binds, and after it the one the renderer makes its context with. ConfigError if `render`
+    and none can be had."""
     from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
 
-    if "mujoco" not in sys.modules:
-        try:
-            choose_gl_backend()
-        except ConfigError:
-            if render:
-                raise
+    try:
+        choose_gl_backend()
+    except ConfigError:
+        if render:
+            raise
     if render:
         import_physics_for_rendering()

@@ -98,4 +98,4 @@ def check_range(
         raise ConfigError(f"{name}: {value!r} is not a number; accepted {span}")
     ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
     if not ok:
-        raise ConfigError(f"{name}: {value} is out of range; accepted {span}")
+        raise ConfigError(f"{name}: {value:g} is out of range; accepted {span}")

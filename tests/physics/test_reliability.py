@@ -26,7 +26,7 @@ def _two_brick_build(config: SimConfig = SimConfig()) -> BuildLoop:
 
 def _run(loop: BuildLoop, on_step) -> dict:
     """Build with a fault injected after every physics step; the result as result.json has it."""
-    return judge(loop.run(BuildHooks(on_step=on_step)), loop.config).to_json()
+    return judge(loop.run(BuildHooks(on_step=on_step)), loop.config).to_dict()
 
 
 def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(teleport):

@@ -11,7 +11,7 @@ import sys
 
 from ..config import SimConfig
 from ..errors import ConfigError
-from ..output.files import check_writable_dir, removed_if_failed, write_json_atomic
+from ..output.files import check_writable_dir, removed_if_failed
 from .args import (
     EXIT_FAILED,
     config_from_args,
@@ -29,7 +29,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     from ..physics.build import prepare
 
     plan = prepare(spec, config, args.arms)
-    print(json.dumps(plan.to_json(), indent=2))
+    print(json.dumps(plan.to_dict(), indent=2))
     return 0
 
 
@@ -74,7 +74,7 @@ def cmd_build(args: argparse.Namespace) -> int:
             plan, config, on_placed=placed, video=video,
             on_frame=lambda n: frames.update(1), snapshot=snapshot,
         )
-        write_json_atomic(args.out / "result.json", result.to_json())
+        result.save(args.out / "result.json")
     print(_summary(result, args))
     if not result.success:
         print(f"build failed: {result.failure_reason}", file=sys.stderr)

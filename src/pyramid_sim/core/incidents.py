@@ -30,7 +30,7 @@ class Drop:
     step: str
     on_spot: bool
 
-    def as_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         doc = asdict(self)
         doc["time"] = round(self.time, 3)
         doc["position"] = [round(v, 4) for v in self.position]
@@ -54,7 +54,7 @@ class Knock:
     position: tuple[float, float, float]
     moved_mm: float
 
-    def as_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         doc = asdict(self)
         doc["time"] = round(self.time, 3)
         doc["position"] = [round(v, 4) for v in self.position]

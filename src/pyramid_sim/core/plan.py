@@ -29,7 +29,7 @@ class Plan:
         """Build-order indices of the bricks this arm places."""
         return [b.index for b in self.bricks if b.arm == arm]
 
-    def to_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """The `pyramid-sim plan` document: metres and radians, world frame."""
         return {
             "structure": self.structure,

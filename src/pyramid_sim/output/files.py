@@ -6,12 +6,11 @@ complete, so an interrupted run never leaves a half-written result, video, still
 
 from __future__ import annotations
 
-import json
 import os
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Callable, Iterator
 
 from ..errors import ConfigError
 
@@ -41,12 +40,6 @@ def write_atomic(path: Path, write: Callable[[Path], None]) -> None:
     """Call `write(tmp)` and move the finished file to `path`."""
     with atomic_path(path) as tmp:
         write(tmp)
-
-
-def write_json_atomic(path: Path, document: dict[str, Any]) -> None:
-    """`document` as indented JSON, written atomically."""
-    text = json.dumps(document, indent=2) + "\n"
-    write_atomic(path, lambda tmp: tmp.write_text(text))
 
 
 def check_writable_dir(path: Path, what: str = "out") -> None:

@@ -1,5 +1,6 @@
 """The result of a build: one typed, immutable `BuildResult` with its bricks, and its one
-serialisation, `to_json`, which is `result.json`.
+serialisation: `to_dict` (the document), `to_json` (its text, as `result.json` holds it) and
+`save` (that file, written atomically).
 
 Values are kept as written to result.json (rounded), so a field read in Python and the same
 field read from the file agree. Pure: no MuJoCo.
@@ -8,12 +9,15 @@ field read from the file agree. Pure: no MuJoCo.
 from __future__ import annotations
 
 import importlib.metadata
+import json
 import platform
 from dataclasses import asdict, dataclass
 from functools import lru_cache
+from pathlib import Path
 from typing import Any
 
 from ..core.incidents import Drop, Knock
+from .files import write_atomic
 
 Vec3 = tuple[float, float, float]
 
@@ -64,7 +68,7 @@ class BrickResult:
     knocked_off: bool
     placed: bool
 
-    def to_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         doc = asdict(self)
         doc["target"] = {"position": list(self.target.position), "yaw": self.target.yaw}
         if self.final is not None:
@@ -83,7 +87,7 @@ class BuildInputs:
     goals_file: str | None
     settings: dict[str, Any]  # the whole SimConfig, as nested dicts
 
-    def to_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         return asdict(self)
 
 
@@ -137,15 +141,26 @@ class BuildResult:
     versions: dict[str, str]
     video: VideoInfo | None = None
 
-    def to_json(self) -> dict[str, Any]:
-        """The `result.json` document (strict JSON: no NaN or Infinity)."""
+    def to_json(self) -> str:
+        """The text of `result.json`, exactly as the command line writes it."""
+        return json.dumps(self.to_dict(), indent=2, allow_nan=False) + "\n"
+
+    def save(self, path: str | Path) -> None:
+        """Write `to_json()` to `path` whole or not at all (as `pyramid-sim build` writes
+        DIR/result.json)."""
+        text = self.to_json()
+        write_atomic(Path(path), lambda tmp: tmp.write_text(text))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The `result.json` document as a dict, as `json.load` reads the file (strict JSON: no
+        NaN or Infinity)."""
         doc: dict[str, Any] = {}
         for name in self.__dataclass_fields__:
             value = getattr(self, name)
             if name == "bricks":
-                value = [b.to_json() for b in value]
+                value = [b.to_dict() for b in value]
             elif name in ("drop_events", "knocked_off"):
-                value = [e.as_json() for e in value]
+                value = [e.to_dict() for e in value]
             elif name == "failed_checks":
                 value = list(value)
             elif name in ("inputs", "video"):
@@ -153,7 +168,7 @@ class BuildResult:
                     continue
                 value = asdict(value)
             doc[name] = value
-        return doc
+        return json.loads(json.dumps(doc, allow_nan=False))  # tuples as lists, as the file reads
 
 
 @lru_cache(maxsize=1)

@@ -20,21 +20,28 @@ import numpy as np
 from ..config import VideoConfig
 from ..errors import ConfigError
 from .files import temporary_beside, write_atomic
+from .gl_backend import choose_gl_backend
+from .renderer import HeadlessRenderer
 
 
-def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> mujoco.Renderer:
-    """A renderer with the asked shadows and MSAA (ConfigError when no OpenGL context can be
-    made). The sample count is read from the model when the GL context is made; it is visual
-    only, so physics is unchanged."""
+def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> HeadlessRenderer:
+    """A renderer with the asked shadows and MSAA, in a context of the headless backend chosen
+    for this process, whenever MuJoCo was imported (ConfigError when no context can be made).
+    The sample count is read from the model when the GL context is made; it is visual only, so
+    physics is unchanged."""
     model.vis.quality.offsamples = config.antialias
+    backend = choose_gl_backend()
     try:
-        renderer = mujoco.Renderer(model, height=config.height, width=config.width)
-    except Exception as err:  # GLFW, EGL or OSMesa could not give a context
-        backend = os.environ.get("MUJOCO_GL", "unset")
-        raise ConfigError(
-            f"video: no OpenGL context with MUJOCO_GL={backend} ({err}); accepted egl or osmesa, "
-            "chosen before mujoco is first imported (apt-get install libegl1 libgl1-mesa-dri)"
-        ) from None
+        renderer = HeadlessRenderer(model, config.width, config.height, backend)
+    except Exception as err:  # no display for GLFW, or a GL library missing
+        first = str(err).splitlines()[0] if str(err) else type(err).__name__
+        fix = (
+            "GLFW needs a display: unset MUJOCO_GL, or set it to egl, to render headless"
+            if backend.lower() == "glfw" else
+            "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa (apt-get install "
+            "libosmesa6)"
+        )
+        raise ConfigError(f"video: no OpenGL context with MUJOCO_GL={backend} ({first}); {fix}") from None
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
     return renderer
 
@@ -119,7 +126,7 @@ class Recorder:
 
 
 def write_still(
-    renderer: mujoco.Renderer, data: mujoco.MjData, config: VideoConfig, path: Path
+    renderer: HeadlessRenderer, data: mujoco.MjData, config: VideoConfig, path: Path
 ) -> None:
     """A PNG of the scene as it is now, written atomically; closes the renderer."""
     try:

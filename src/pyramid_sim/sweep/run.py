@@ -6,7 +6,6 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
-from ..output.files import write_json_atomic
 from .grid import SweepConfig, value_text
 from .report import grid_rows, summary_table, write_heatmaps
 from .runner import RunResult, run_processes, run_ray
@@ -41,7 +40,7 @@ def run_sweep(
 
     def record(result: RunResult) -> None:
         if result.build is not None:
-            write_json_atomic(out / "runs" / run_file_name(result), result.build.to_json())
+            result.build.save(out / "runs" / run_file_name(result))
         store.append(result.row)
         if on_row is not None:
             on_row(result)
