@@ -22,6 +22,7 @@ def _measured(**changes) -> Measurements:
         final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]), slip_mm={0: 1.0}, drops=(), knocks=(),
         sim_time=12.0, wall_time=1.0, arm_arm_contacts=0, arm_body_contacts=0, zone_violations=0,
         finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
+        speed_joint=8,
         warnings={}, failure=None, idle_motion_mm=0.0,
         contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
         closest_arm_m=0.1, closest_arm_time=1.0, physics_steps=6000,
@@ -44,8 +45,10 @@ def test_a_clean_build_passes_every_check():
         ({"arm_arm_contacts": 2}, "arm_arm_contacts", "2 arm-arm contacts"),
         ({"arm_body_contacts": 1}, "arm_body_contacts", "1 contacts of an arm with the robot's"),
         ({"zone_violations": 4}, "shared_zone", "both arms in one zone"),
-        ({"joint_speed_ratio": 1.02}, "joint_speed", "1.02 of its velocity limit"),
-        ({"joint_torque_ratio": 1.19}, "joint_torque", "arm joint 3 demanded 1.19"),
+        ({"joint_speed_ratio": 1.02}, "joint_speed",
+         "the right arm's joint panda_joint2 moved at 1.02 of its velocity limit (2.175 rad/s)"),
+        ({"joint_torque_ratio": 1.19}, "joint_torque",
+         "the left arm's joint panda_joint4 demanded 1.19 of its torque limit (87 N m"),
         ({"finger_limit_mm": 3.0}, "finger_range", "3.00 mm past its joint range"),
         ({"idle_motion_mm": 52.0}, "idle_bricks", "nobody had touched moved 52.0 mm"),
     ],
@@ -82,3 +85,9 @@ def test_docs_name_every_field_a_result_writes():
     names |= {f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)}
     missing = sorted(n for n in names if f"`{n}`" not in text)
     assert not missing, f"docs/outputs.md does not name {missing}"
+
+
+def test_a_baxter_limit_names_the_arm_the_joint_and_the_limit():
+    baxter = replace(CONFIG, robot="baxter")
+    reason = judge(_measured(joint_torque_ratio=1.25, torque_joint=1), baxter).failure_reason
+    assert reason.startswith("the left arm's joint left_s1 demanded 1.25 of its torque limit (50 N m")

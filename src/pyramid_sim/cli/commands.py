@@ -193,4 +193,12 @@ def cmd_reach(args: argparse.Namespace) -> int:
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
     for r in rows:
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+    print(REACH_CHECKS)
     return 0
+
+
+REACH_CHECKS = (
+    "Checked by IK alone: every pose of the plan within the joints' ranges and clear of "
+    "collisions. Not checked: joint speed, demanded torque with a brick held, and grip, which "
+    "only a build measures; a size within reach can still fail on them."
+)

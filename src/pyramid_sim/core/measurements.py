@@ -33,6 +33,7 @@ class Measurements:
     joint_speed_ratio: float
     joint_torque_ratio: float  # demanded: the servo's unclamped output plus gravity compensation
     torque_joint: int | None  # which arm joint (0-6 left, 7-13 right) demanded the most
+    speed_joint: int | None  # which arm joint moved the fastest for its limit
     warnings: dict[str, int]
     failure: str | None
     idle_motion_mm: float  # the furthest a brick moved before an arm reached for it

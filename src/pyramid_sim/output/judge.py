@@ -112,15 +112,43 @@ def failure_reason(
         "arm_arm_contacts": f"{measured.arm_arm_contacts} arm-arm contacts",
         "arm_body_contacts": f"{measured.arm_body_contacts} contacts of an arm with the robot's body",
         "shared_zone": f"both arms in one zone at {measured.zone_violations} control steps",
-        "joint_speed": f"a joint moved at {measured.joint_speed_ratio:.2f} of its velocity limit",
-        "joint_torque": f"arm joint {measured.torque_joint} demanded "
-                        f"{measured.joint_torque_ratio:.2f} of its torque limit (servo and "
-                        "gravity compensation)",
+        "joint_speed": f"{joint_name(config, measured.speed_joint)} moved at "
+                       f"{measured.joint_speed_ratio:.2f} of its velocity limit "
+                       f"({joint_limit(config, measured.speed_joint, 'velocity'):g} rad/s)",
+        "joint_torque": f"{joint_name(config, measured.torque_joint)} demanded "
+                        f"{measured.joint_torque_ratio:.2f} of its torque limit "
+                        f"({joint_limit(config, measured.torque_joint, 'torque'):g} N m, servo "
+                        "and gravity compensation)",
         "finger_range": f"a finger went {measured.finger_limit_mm:.2f} mm past its joint range",
         "idle_bricks": f"a brick nobody had touched moved {measured.idle_motion_mm:.1f} mm",
     }
     problems += [text for name, text in texts.items() if not held[name]]
     return "; ".join(problems)
+
+
+ARMS = ("left", "right")  # the order in which the monitor counts arm joints: left first
+
+
+def joint_name(config: SimConfig, joint: int | None) -> str:
+    """`joint`, an arm joint counted across both arms (left first), as "the left arm's joint
+    s1"; "a joint" when unknown."""
+    if joint is None:
+        return "a joint"
+    arm, k = _arm_joint(config, joint)
+    return f"the {arm} arm's joint {config.robot_spec.arms[arm].joints[k].rsplit('/', 1)[-1]}"
+
+
+def joint_limit(config: SimConfig, joint: int | None, kind: str) -> float:
+    """The real arm's `kind` ("velocity" or "torque") limit of `joint`; NaN when unknown."""
+    if joint is None:
+        return math.nan
+    arm, k = _arm_joint(config, joint)
+    return getattr(config.robot_spec.arms[arm], f"{kind}_limits")[k]
+
+
+def _arm_joint(config: SimConfig, joint: int) -> tuple[str, int]:
+    n = len(config.robot_spec.arms[ARMS[0]].joints)
+    return ARMS[joint // n], joint % n
 
 
 def inputs_of(plan: Plan, config: SimConfig) -> BuildInputs:

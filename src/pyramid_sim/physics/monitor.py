@@ -84,6 +84,7 @@ class StepMonitor:
         self._inv_vel = 1.0 / np.asarray(limits.velocity)
         self._inv_torque = 1.0 / np.asarray(limits.torque)
         self.torque_joint: int | None = None  # arm joint (0-based, both arms) of the peak
+        self.speed_joint: int | None = None  # the same, of the speed's peak
         self.speed_ratio = 0.0
         self.torque_ratio = 0.0
         self.finger_excess = 0.0  # m past either end of the finger joints' range
@@ -114,7 +115,9 @@ class StepMonitor:
         b0, b1, b2 = self._bias
         servo = self._gain * self._ctrl.rows(n) + b0 + b1 * self._qpos.rows(n, self._angles) + b2 * v
         ratio = np.abs(servo + self._gravity.rows(n)) * self._inv_torque
-        self.speed_ratio = max(self.speed_ratio, float((np.abs(v) * self._inv_vel).max()))
+        speed = np.abs(v) * self._inv_vel
+        if float(speed.max()) > self.speed_ratio:
+            self.speed_ratio, self.speed_joint = float(speed.max()), int(speed.max(axis=0).argmax())
         peak = float(ratio.max())
         if peak > self.torque_ratio:
             self.torque_ratio, self.torque_joint = peak, int(ratio.max(axis=0).argmax())

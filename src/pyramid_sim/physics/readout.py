@@ -43,6 +43,7 @@ def measurements(loop: BuildLoop, failure: str | None, wall: float) -> Measureme
         warnings=warnings,
         failure=failure,
         torque_joint=loop.monitor.torque_joint,
+        speed_joint=loop.monitor.speed_joint,
         idle_motion_mm=custody.idle_motion * 1000.0,
         contact_friction=contact_frictions(loop.model, loop.handles, loop.config.robot_spec),
         closest_arm_m=loop.clearance.closest,
