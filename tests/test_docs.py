@@ -1,0 +1,28 @@
+"""The README and docs/ are read by users of the repository alone: every link they hold opens a
+file in it, and they state no figure that goes stale by hand (a count of the tests)."""
+
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+LINK = re.compile(r"\]\(([^)#\s]+)(?:#[^)]*)?\)")
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_every_link_opens_a_file_of_the_repository(page):
+    text = page.read_text()
+    assert "../shared" not in text, f"{page.name} points outside the repository"
+    for target in LINK.findall(text):
+        if re.match(r"[a-z]+://", target):
+            continue
+        path = (page.parent / target).resolve()
+        assert path.is_relative_to(ROOT) and path.exists(), f"{page.name}: {target}"
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_no_hand_counted_test_totals(page):
+    counted = re.findall(r"\b\d+ (?:tests|passed)\b", page.read_text())
+    assert not counted, f"{page.name} states {counted}: such counts go stale"
