@@ -43,10 +43,7 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert figures["sweep_successes_1"] == 1 and figures["sweep_successes_2"] == 2
     assert figures["replay_matches_build"] is True
     assert figures["ik_solves"] * 5 == figures["build_physics_steps"]  # 100 Hz IK, 500 Hz physics
-    assert figures["bricks_per_hour_sim"] == pytest.approx(3600 / figures["sim_s_per_brick"])
-    # The budget is what leaves the build at 0.8 of its physics; the IK's floor is part of the
-    # control step it is measured against.
-    assert figures["control_budget_us"] == pytest.approx(figures["physics_us_per_control_step"] / 4)
+    # The IK's floor is part of the control step it is measured against.
     assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
     # The seconds-a-brick targets are the 20-brick pyramid's: not judged on this 2-brick one.
     assert "| simulated s per brick | " in run.stdout and "| not this build |" in run.stdout

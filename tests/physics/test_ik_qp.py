@@ -16,10 +16,12 @@ from pyramid_sim.physics.ik_qp import NO_BOUND
 pytestmark = pytest.mark.physics
 
 
-def _ik_at(rng: np.random.Generator, robot: str = "panda") -> DualArmIK:
+def _ik_at(
+    rng: np.random.Generator, robot: str = "panda", limit_acceleration: bool = True
+) -> DualArmIK:
     """An IK with both arms at random configurations within their ranges, aimed at random
     poses in front of the robot."""
-    ik = DualArmIK(SimConfig(robot=robot))
+    ik = DualArmIK(SimConfig(robot=robot), limit_acceleration=limit_acceleration)
     model = ik.model
     q = model.qpos0.copy()
     low, high = model.jnt_range.T
@@ -86,9 +88,7 @@ def test_the_qp_solution_is_minks():
 
     rng = np.random.default_rng(5)
     for _ in range(5):
-        ik = _ik_at(rng)
-        ik.max_dv[:] = np.inf
-        ik._max_ddq[:] = np.inf
+        ik = _ik_at(rng, limit_acceleration=False)
         qp = mink.build_ik(ik.configuration, ik.task_list, ik.dt, ik.damping, ik.limits)
         ref, _, flag, _ = daqp.solve(qp.P, qp.q, qp.G, qp.h, np.full(qp.h.size, -1e30),
                                      np.zeros(qp.h.size, dtype=c_int))

@@ -90,8 +90,8 @@ class DualArmIK:
             self.model, self._guarded_pairs(), config.motion.arm_min_distance
         )
         self.limits = [position_limit, velocity_limit, self._collision]  # as mink takes them
-        self.max_dv = self._velocity_change(limit_acceleration)
-        self._max_ddq = self.max_dv * self.dt  # the change of a step dq from one to the next
+        # The most a step's dq may change from one step to the next.
+        self._max_ddq = self._velocity_change(limit_acceleration) * self.dt
         rows = self._collision.limit.max_num_contacts
         self._free = np.full(rows, -NO_BOUND)  # the collision rows' lower bounds
         self._sense = np.zeros(self.model.nv + rows, dtype=c_int)
