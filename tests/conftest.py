@@ -19,7 +19,8 @@ def build_once(structure: str, layers: int):
     """Each default build is simulated once per session and shared by the tests that read it."""
     from pyramid_sim.config import SimConfig
     from pyramid_sim.core.structures import StructureSpec
-    from pyramid_sim.physics.build import prepare, run_build
+    from pyramid_sim.jobs.build import run_build
+    from pyramid_sim.physics.reach import prepare
 
     key = (structure, layers)
     if key not in _BUILDS:

@@ -123,7 +123,8 @@ def build(
         if path is not None and Path(path).suffix.lower() != suffix:
             raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
     _prepare_gl(render=video is not None or snapshot is not None)
-    from .physics.build import prepare, run_build
+    from .jobs.build import run_build
+    from .physics.reach import prepare
 
     vc = video_config or VideoConfig()
     return run_build(

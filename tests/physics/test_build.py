@@ -9,7 +9,7 @@ import pytest
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.result import Tolerances
-from pyramid_sim.physics.build import prepare
+from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.resources import GOALS
@@ -60,8 +60,8 @@ def test_build_is_clean(built, structure, layers, count):
 def test_same_settings_give_identical_final_poses():
     config = SimConfig()
     plan = prepare(StructureSpec("pyramid", layers=2), config)
-    first = BuildLoop(plan, config).run()
-    second = BuildLoop(plan, config).run()
+    first = BuildLoop.of(plan, config).run()
+    second = BuildLoop.of(plan, config).run()
     assert first.failure is None
     np.testing.assert_array_equal(first.final_pos, second.final_pos)
     np.testing.assert_array_equal(first.final_quat, second.final_quat)
@@ -72,7 +72,7 @@ def test_a_grip_too_weak_to_hold_the_brick_fails_the_build():
     """The measurement can fail: a 1 N grip on a 0.5 kg brick cannot lift it."""
     from dataclasses import replace
 
-    from pyramid_sim.physics.build import run_build
+    from pyramid_sim.jobs.build import run_build
 
     base = SimConfig()
     config = replace(base, gripper=replace(base.gripper, force=1.0), max_sim_time=60.0)
@@ -90,10 +90,10 @@ def test_a_dropped_brick_in_the_spawn_spots_way_ends_the_build_at_once_with_its_
     from pyramid_sim.output.judge import judge
 
     config = replace(SimConfig(), stall_time=15.0)
-    loop = BuildLoop(prepare(StructureSpec("pyramid", layers=2), config), config)
+    loop = BuildLoop.of(prepare(StructureSpec("pyramid", layers=2), config), config)
     knocked = []
 
-    def knock(loop, data):
+    def knock(data):
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if carry is not None and step is not None and step.name == "clear":
             teleport(loop, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
@@ -117,10 +117,10 @@ def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_it
     from pyramid_sim.output.judge import judge
 
     config = replace(SimConfig(), stall_time=15.0)
-    loop = BuildLoop(prepare(StructureSpec("pyramid", layers=3), config), config)
+    loop = BuildLoop.of(prepare(StructureSpec("pyramid", layers=3), config), config)
     knocked = []
 
-    def knock(loop, data):  # the first placed brick, end to end with the spot 1 cm from it,
+    def knock(data):  # the first placed brick, end to end with the spot 1 cm from it,
         # once the spot is empty and before the last brick is set on it
         slots, spot, spawner = loop.custody.knock_watch.slots, loop.plan.spawn, loop.spawner
         if not knocked and slots and spawner.current is None and spawner.next_slot < 6:
@@ -141,7 +141,7 @@ def test_bricks_spawned_off_the_spot_are_still_built():
     the Newton line search now has 50 iterations)."""
     from dataclasses import replace
 
-    from pyramid_sim.physics.build import run_build
+    from pyramid_sim.jobs.build import run_build
 
     base = SimConfig()
     config = replace(base, layout=replace(base.layout, spawn_jitter_mm=2.0), seed=1)
@@ -179,7 +179,7 @@ def _brick_manager_spec(name: str) -> StructureSpec:
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
     """Every structure at its default size (the seed's five goals for the list), by both arms
     and by one alone; every final pose within the pyramid tests' tolerances."""
-    from pyramid_sim.physics.build import run_build
+    from pyramid_sim.jobs.build import run_build
 
     config = SimConfig()
     plan = prepare(_brick_manager_spec(name), config, arms)
@@ -195,7 +195,7 @@ def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
 def test_the_overlap_schedule_builds_in_order_one_arm_in_a_zone_faster_than_the_lockstep():
     from dataclasses import replace
 
-    from pyramid_sim.physics.build import run_build
+    from pyramid_sim.jobs.build import run_build
 
     spec = StructureSpec("pyramid-even", layers=2)
     config = replace(SimConfig(), schedule="overlap")
@@ -217,7 +217,7 @@ def test_only_the_overlap_schedule_lifts_quickly_and_turns_on_the_way_up(schedul
     from pyramid_sim.core.poses import grasp_yaw
 
     config = replace(SimConfig(), schedule=schedule)
-    loop = BuildLoop(prepare(StructureSpec("pyramid-even", layers=2), config), config)
+    loop = BuildLoop.of(prepare(StructureSpec("pyramid-even", layers=2), config), config)
     loop.dispatch.schedule(0.0)
     steps = loop.dispatch.runners["left"].steps
     grip = next(i for i, s in enumerate(steps) if s.name == "grip")

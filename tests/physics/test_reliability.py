@@ -11,7 +11,7 @@ from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.judge import judge
-from pyramid_sim.physics.build import prepare
+from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
 
@@ -21,7 +21,7 @@ pytestmark = pytest.mark.physics
 
 
 def _two_brick_build(config: SimConfig = SimConfig()) -> BuildLoop:
-    return BuildLoop(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+    return BuildLoop.of(prepare(StructureSpec("pyramid-even", layers=1), config), config)
 
 
 def _run(loop: BuildLoop, on_step) -> dict:
@@ -30,15 +30,15 @@ def _run(loop: BuildLoop, on_step) -> dict:
 
 
 def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(teleport):
-    knocked = []
+    knocked, loop = [], _two_brick_build()
 
-    def knock(loop, data):  # once, while the left arm carries its brick out to its clear pose
+    def knock(data):  # once, while the left arm carries its brick out to its clear pose
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if not knocked and carry is not None and step is not None and step.name == "clear":
             teleport(loop, data, carry.slot, FLOOR_AWAY)
             knocked.append(carry.slot)
 
-    doc = _run(_two_brick_build(), knock)
+    doc = _run(loop, knock)
     assert knocked == [0]
     assert doc["success"], doc["failure_reason"]
     assert doc["bricks_placed"] == 2 and doc["drops"] == 1 and doc["recoveries"] == 1
@@ -53,15 +53,15 @@ def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure
 
 
 def test_a_brick_knocked_off_the_structure_is_reported(teleport):
-    knocked = []
+    knocked, loop = [], _two_brick_build()
 
-    def knock(loop, data):  # the first placed brick, pushed off once the second is picked
+    def knock(data):  # the first placed brick, pushed off once the second is picked
         custody = loop.custody
         if not knocked and custody.knock_watch.slots and custody.carry["right"] is not None:
             teleport(loop, data, custody.knock_watch.slots[0], FLOOR_AWAY)
             knocked.append(data.time)
 
-    doc = _run(_two_brick_build(), knock)
+    doc = _run(loop, knock)
     assert knocked
     assert not doc["success"] and "knocked off" in doc["failure_reason"]
     (knock_event,) = doc["knocked_off"]
@@ -94,16 +94,16 @@ def test_a_dropped_brick_at_rest_on_the_spot_is_picked_again_and_one_in_its_way_
 ):
     """A brick knocked out of the hand mid-carry lands on the spawn spot as spawned, or 8 mm
     off it (beyond the 4 mm a pick allows, and in the way of the next brick)."""
-    knocked = []
+    knocked, loop = [], _two_brick_build()
 
-    def knock(loop, data):
+    def knock(data):
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if not knocked and carry is not None and step is not None and step.name == "hover":
             spot = loop.plan.spawn
             teleport(loop, data, carry.slot, (spot.x, spot.y + off_mm / 1000, spot.z), yaw=spot.yaw)
             knocked.append(data.time)
 
-    doc = _run(_two_brick_build(), knock)
+    doc = _run(loop, knock)
     assert knocked and doc["drops"] == 1
     if picked_again:
         assert doc["success"], doc["failure_reason"]
@@ -119,7 +119,7 @@ def test_a_diverging_step_stops_the_build_at_once_naming_the_warning(tmp_path, m
     monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to MUJOCO_LOG.TXT in the cwd
     loop = _two_brick_build()
 
-    def poison(loop, data):
+    def poison(data):
         if abs(data.time - 1.0) < 1e-9:
             data.qvel[loop.handles.brick_dofs[3]] = np.nan
 

@@ -17,7 +17,8 @@ import numpy as np
 from ..config import SimConfig, VideoConfig, check_count
 from ..core.structures import StructureSpec
 from ..output.judge import judge
-from ..physics.build import prepare, run_build
+from ..jobs.build import run_build
+from ..physics.reach import prepare
 from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
 from ..robots import DEFAULT_ROBOT
@@ -56,7 +57,7 @@ def bare_rate(config: SimConfig, spec: StructureSpec, seconds: float) -> float:
     """Steps per second of `mj_step` alone on the build's own scene (both arms, table, magazine
     of bricks) from the build's start state, controls held: the limit a build can approach.
     One simulated second runs first, untimed, so bricks that settle fall asleep as in a build."""
-    loop = BuildLoop(prepare(spec, config), config)
+    loop = BuildLoop.of(prepare(spec, config), config)
     m, d = loop.model, loop.data
     for _ in range(int(round(1.0 / m.opt.timestep))):
         mujoco.mj_step(m, d)
@@ -83,7 +84,7 @@ class Recording:
             on_step=self.step, on_spawn=self.spawned, on_ik=self.ik_seconds.append
         )
 
-    def step(self, loop: BuildLoop, data: mujoco.MjData) -> None:
+    def step(self, data: mujoco.MjData) -> None:
         self.ctrl.append(data.ctrl.copy())
 
     def spawned(self, slot: int, data: mujoco.MjData) -> None:
@@ -111,7 +112,7 @@ class Recording:
 
 def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any], BuildLoop]:
     """One headless build, timed whole and per IK solve, then its physics replayed alone."""
-    loop = BuildLoop(prepare(spec, config), config)
+    loop = BuildLoop.of(prepare(spec, config), config)
     recording = Recording(loop)
     measured = loop.run(recording.hooks)
     peak_rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
@@ -148,7 +149,7 @@ def control_step_figures(
     cost of it."""
     substeps = config.substeps
     physics_us = substeps * 1e6 / figures["replay_steps_per_s"]
-    loop = BuildLoop(prepare(spec, config), config)
+    loop = BuildLoop.of(prepare(spec, config), config)
     with timed_calls(ik_floor_calls()) as spent:
         loop.run()
     return {

@@ -26,7 +26,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     refused here too."""
     config = config_from_args(args)
     spec = spec_from_args(args, config)
-    from ..physics.build import prepare
+    from ..physics.reach import prepare
 
     plan = prepare(spec, config, args.arms)
     print(json.dumps(plan.to_dict(), indent=2))
@@ -53,7 +53,9 @@ def cmd_build(args: argparse.Namespace) -> int:
         choose_gl_backend()  # before mujoco is imported
     from tqdm import tqdm
 
-    from ..physics.build import prepare, run_build
+    from ..jobs.build import run_build
+
+    from ..physics.reach import prepare
 
     plan = prepare(spec, config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
@@ -106,12 +108,12 @@ def cmd_view(args: argparse.Namespace) -> int:
         raise ConfigError("view: no display (DISPLAY is not set); use build --video instead")
     import mujoco.viewer
 
-    from ..physics.build import prepare
+    from ..physics.reach import prepare
     from ..physics.hooks import BuildHooks
     from ..physics.loop import BuildLoop
 
     config = config_from_args(args)
-    loop = BuildLoop(prepare(spec_from_args(args, config), config, args.arms), config)
+    loop = BuildLoop.of(prepare(spec_from_args(args, config), config, args.arms), config)
     start = time.perf_counter()
     try:
         viewer = mujoco.viewer.launch_passive(loop.model, loop.data)
@@ -138,7 +140,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         require_ray()
     from tqdm import tqdm
 
-    from ..physics.build import prepare
+    from ..physics.reach import prepare
     from ..sweep.run import report, run_sweep
 
     prepare(config.structure, SimConfig(robot=config.robot), config.arms)  # out of reach: refused

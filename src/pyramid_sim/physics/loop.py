@@ -1,5 +1,5 @@
-"""The physics loop: composes the plan, scheduler, primitives, IK, spawner and custody around
-mj_step. One control step (IK at `control_dt`) drives `substeps` physics steps."""
+"""The physics loop: composes a build's parts (physics/parts.py) around mj_step. One control
+step (IK at `control_dt`) drives `substeps` physics steps."""
 
 from __future__ import annotations
 
@@ -11,67 +11,26 @@ import numpy as np
 from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
-from ..core.primitives import Step, StepKind, clear_pose
+from ..core.primitives import Step, StepKind
 from ..core.scheduler import Action, Task
-from ..core.zone import Zone, overlap_zones, shared_zone
 from . import names as c
-from .clearance import ArmClearance
-from .custody import BrickCustody
-from .dispatch import ArmDispatch
-from .handles import SceneHandles
 from .hooks import BuildHooks
-from .ik import DualArmIK
-from .monitor import StepMonitor, joint_limits
+from .parts import BuildParts, make_parts
 from .readout import measurements
-from .scene import build_scene
-from .spawner import Spawner
 from .stops import stall_reason, warning_reason
-
-# m: no brick, and no arm link, this near the spawn volume when a brick is set on the spot
-SPOT_CLEARANCE, SPOT_ARM_CLEARANCE = 0.02, 0.10
-ZONE_MARGIN = 0.04  # m around the bricks' footprints
-
-
-def schedule_zones(schedule: str, plan: Plan, config: SimConfig) -> dict[str, Zone]:
-    """The zones the schedule hands out: one shared zone for the lockstep, the spot's and the
-    structure's for the overlap schedule."""
-    targets = [b.target.pose for b in plan.bricks]
-    if schedule == "overlap":
-        return overlap_zones(plan.spawn, targets, config.brick.length, config.brick.width, ZONE_MARGIN)
-    return {"shared": shared_zone(plan.spawn, targets, config.brick.length / 2, ZONE_MARGIN)}
 
 
 class BuildLoop:
-    """One build of a plan in a freshly compiled scene; `run()` builds it once."""
+    """One build of a plan, from parts made for it; `run()` builds it once."""
 
-    def __init__(self, plan: Plan, config: SimConfig) -> None:
-        self.plan, self.config = plan, config
+    def __init__(self, parts: BuildParts) -> None:
+        self.parts = p = parts
+        self.plan, self.config = p.plan, p.config
+        self.model, self.data, self.handles = p.model, p.data, p.handles
+        self.ik, self.spawner, self.custody, self.dispatch = p.ik, p.spawner, p.custody, p.dispatch
+        self.zones, self.clearance, self.monitor = p.zones, p.clearance, p.monitor
         self.hooks = BuildHooks()
-        # Spare bricks replace dropped ones that cannot be picked again.
-        scene = build_scene(config, len(plan.bricks) + config.spare_bricks)
-        self.model = m = scene.model
-        self.data = mujoco.MjData(m)
-        self.handles = h = SceneHandles(m, config.robot_spec, scene.n_bricks)
-        self.ik = DualArmIK(config)
-        self.zones = schedule_zones(config.schedule, plan, config)
-        self.spawner = Spawner(
-            m, config.robot_spec, h, plan.spawn, clearance=SPOT_CLEARANCE, arm_clearance=SPOT_ARM_CLEARANCE,
-            jitter=config.layout.spawn_jitter_mm / 1000.0, seed=config.seed,
-        )
-        self.custody = BrickCustody(self.data, h, self.spawner, len(plan.bricks), config)
-        self._reset_arms()
-        self.dispatch = ArmDispatch(
-            plan, config, self.spawner, {a: self.ik.tcp_pose(a) for a in c.ARMS}, self.zones
-        )
-        self.clearance = ArmClearance(m, self.data, config.robot_spec)
-        self.monitor = StepMonitor(
-            m, self.data,
-            dofs=np.concatenate([h.arm_dofs[a] for a in c.ARMS]),
-            qpos=np.concatenate([h.arm_qpos[a] for a in c.ARMS]),
-            actuators=np.concatenate([h.arm_actuators[a] for a in c.ARMS]),
-            fingers=np.concatenate([h.finger_qpos[a] for a in c.ARMS]),
-            limits=joint_limits(m, config.robot_spec),
-        )
+        config, h = self.config, self.handles
         self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
         # The command in `handles.ctrl_index` order: each arm's joints, then its gripper.
         self._ik_q = np.concatenate([self.ik.qadr[a] for a in c.ARMS])
@@ -79,34 +38,19 @@ class BuildLoop:
         self._command = np.zeros(len(h.ctrl_index))
         self._command_gap = np.array([joints, 2 * joints + 1])
         self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
-        self.placed = self.zone_violations = self.steps = 0
+        self.placed = self.steps = 0
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
 
-    def _reset_arms(self) -> None:
-        """Both arms start at their outer clear poses, outside the shared zone."""
-        d, h = self.data, self.handles
-        self.ik.reset_home()
-        robot = self.config.robot_spec
-        start = {a: self.ik.solve(a, clear_pose(a, robot)) for a in c.ARMS}
-        for a in c.ARMS:
-            d.qpos[h.arm_qpos[a]] = start[a]
-            d.ctrl[h.arm_actuators[a]] = start[a]
-            opened = robot.open_gap()
-            d.ctrl[h.gripper[a]] = opened
-            for q, sign in zip(h.finger_qpos[a], robot.finger_signs):
-                d.qpos[q] = sign * opened / 2
-        self.ik.reset(start["left"], start["right"])
-        mujoco.mj_forward(self.model, d)
+    @classmethod
+    def of(cls, plan: Plan, config: SimConfig) -> BuildLoop:
+        """A loop with parts freshly made for `plan` (a new compiled scene)."""
+        return cls(make_parts(plan, config))
 
     # --- what the loop reads ----------------------------------------------------------------
     def step_of(self, arm: str) -> Step | None:
         """The primitive step the arm is in (None when idle)."""
         return self.dispatch.step_of(arm)
-
-    def _arm_outside(self, arm: str, zone: Zone) -> bool:
-        xpos = self.data.xpos
-        return not zone.any_inside(xpos[b] for b in self.handles.zone_bodies[arm])
 
     # --- one control step, in parts --------------------------------------------------------
     def _feed_spot(self) -> None:
@@ -114,15 +58,6 @@ class BuildLoop:
             slot = self.custody.feed_spot()
             if slot is not None and self.hooks.on_spawn is not None:
                 self.hooks.on_spawn(slot, self.data)
-
-    def _watch_zone(self) -> None:
-        scheduler, shared = self.dispatch.scheduler, False
-        for name, zone in self.zones.items():
-            outside = {a: self._arm_outside(a, zone) for a in c.ARMS}
-            for a in c.ARMS:
-                scheduler.report_zone(a, outside[a], name)
-            shared = shared or not (outside["left"] or outside["right"])
-        self.zone_violations += shared  # a control step with both arms in one zone
 
     def _drive_arms(self) -> None:
         """Advance each arm's primitive and aim the IK at its pose."""
@@ -172,7 +107,7 @@ class BuildLoop:
             if warned:
                 break
             if hooks.on_step is not None:
-                hooks.on_step(self, d)
+                hooks.on_step(d)
             if hooks.on_frame is not None and hooks.frame_dt is not None and d.time >= self._next_frame - 1e-9:
                 hooks.on_frame(m, d)
                 self._next_frame += hooks.frame_dt
@@ -194,7 +129,7 @@ class BuildLoop:
         if now > cfg.max_sim_time:
             return f"build did not finish within {cfg.max_sim_time:g} s of simulated time"
         if now - self.last_progress > cfg.stall_time:
-            return stall_reason(self)
+            return stall_reason(self.dispatch, self.custody, self.spawner, cfg, now)
         return None
 
     # --- the build ---------------------------------------------------------------------------
@@ -206,7 +141,7 @@ class BuildLoop:
         start = time.perf_counter()
         while True:
             self._feed_spot()
-            self._watch_zone()
+            self.zones.update(self.dispatch.scheduler)
             if self.dispatch.schedule(self.data.time):
                 break
             self._drive_arms()
@@ -220,4 +155,4 @@ class BuildLoop:
                 break
         self.monitor.flush()
         self.custody.finish()
-        return measurements(self, failure, time.perf_counter() - start)
+        return measurements(self.parts, self.steps, failure, time.perf_counter() - start)

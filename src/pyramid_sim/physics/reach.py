@@ -132,3 +132,10 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
         raise ConfigError(
             f"{knob}: {what} is out of reach ({err}); {largest}"
         ) from None
+
+
+def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
+    """The plan, with every pose checked by IK: raises ConfigError before any physics."""
+    plan = make_plan(spec, config, arms)
+    require_reachable(plan, config)
+    return plan

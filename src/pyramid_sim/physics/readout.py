@@ -2,22 +2,20 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import mujoco
 import numpy as np
 
 from ..core.measurements import Measurements
 from .contacts import contact_frictions
-
-if TYPE_CHECKING:
-    from .loop import BuildLoop
+from .parts import BuildParts
 
 
-def measurements(loop: BuildLoop, failure: str | None, wall: float) -> Measurements:
-    """The final state of every brick and every figure the loop and its monitors kept."""
-    d, custody = loop.data, loop.custody
-    qadr = loop.handles.brick_qpos
+def measurements(
+    parts: BuildParts, physics_steps: int, failure: str | None, wall: float
+) -> Measurements:
+    """The final state of every brick and every figure the parts kept."""
+    d, custody, monitor = parts.data, parts.custody, parts.monitor
+    qadr = parts.handles.brick_qpos
     n = len(qadr)
     warnings = {
         mujoco.mjtWarning(i).name: int(d.warning[i].number)
@@ -25,7 +23,7 @@ def measurements(loop: BuildLoop, failure: str | None, wall: float) -> Measureme
         if d.warning[i].number
     }
     return Measurements(
-        plan=loop.plan,
+        plan=parts.plan,
         slot_of=dict(custody.slot_of),
         final_pos=np.array([d.qpos[q : q + 3] for q in qadr]).reshape(n, 3),
         final_quat=np.array([d.qpos[q + 3 : q + 7] for q in qadr]).reshape(n, 4),
@@ -34,19 +32,19 @@ def measurements(loop: BuildLoop, failure: str | None, wall: float) -> Measureme
         knocks=tuple(custody.knocks),
         sim_time=float(d.time),
         wall_time=wall,
-        arm_arm_contacts=loop.monitor.arm_arm_contacts,
-        arm_body_contacts=loop.monitor.arm_body_contacts,
-        zone_violations=loop.zone_violations,
-        finger_limit_mm=loop.monitor.finger_excess * 1000.0,
-        joint_speed_ratio=loop.monitor.speed_ratio,
-        joint_torque_ratio=loop.monitor.torque_ratio,
+        arm_arm_contacts=monitor.arm_arm_contacts,
+        arm_body_contacts=monitor.arm_body_contacts,
+        zone_violations=parts.zones.violations,
+        finger_limit_mm=monitor.finger_excess * 1000.0,
+        joint_speed_ratio=monitor.speed_ratio,
+        joint_torque_ratio=monitor.torque_ratio,
         warnings=warnings,
         failure=failure,
-        torque_joint=loop.monitor.torque_joint,
-        speed_joint=loop.monitor.speed_joint,
+        torque_joint=monitor.torque_joint,
+        speed_joint=monitor.speed_joint,
         idle_motion_mm=custody.idle_motion * 1000.0,
-        contact_friction=contact_frictions(loop.model, loop.handles, loop.config.robot_spec),
-        closest_arm_m=loop.clearance.closest,
-        closest_arm_time=loop.clearance.closest_time,
-        physics_steps=loop.steps,
+        contact_friction=contact_frictions(parts.model, parts.handles, parts.config.robot_spec),
+        closest_arm_m=parts.clearance.closest,
+        closest_arm_time=parts.clearance.closest_time,
+        physics_steps=physics_steps,
     )

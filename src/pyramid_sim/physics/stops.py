@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import mujoco
 import numpy as np
 
+from ..config import SimConfig
 from ..core.scheduler import Action
 from . import names as c
-
-if TYPE_CHECKING:
-    from .loop import BuildLoop
+from .custody import BrickCustody
+from .dispatch import ArmDispatch
+from .spawner import Spawner
 
 
 def warning_reason(data: mujoco.MjData) -> str:
@@ -24,9 +23,10 @@ def warning_reason(data: mujoco.MjData) -> str:
     )
 
 
-def stall_reason(loop: BuildLoop) -> str:
-    """Why no arm has finished a move for `stall_time`: name what they wait for."""
-    dispatch, custody = loop.dispatch, loop.custody
+def stall_reason(
+    dispatch: ArmDispatch, custody: BrickCustody, spawner: Spawner, config: SimConfig, now: float
+) -> str:
+    """Why no arm has finished a move for `stall_time` by `now`: name what they wait for."""
     runners = dispatch.runners
     moving = [a for a in c.ARMS if runners[a].busy and not dispatch.held(a)]
     cause = f"{' and '.join(moving)} arm not reaching its target" if moving else "arms idle"
@@ -39,9 +39,9 @@ def stall_reason(loop: BuildLoop) -> str:
             cause = f"{a} arm waiting for the {dispatch.scheduler.zone_for(a)} zone"
     if custody.drops:
         cause += f"; earlier, {custody.drops[-1].describe()}"
-        if loop.spawner.remaining == 0 and custody.needs_brick():
-            cause += f" (no spare brick left of {loop.config.spare_bricks})"
+        if spawner.remaining == 0 and custody.needs_brick():
+            cause += f" (no spare brick left of {config.spare_bricks})"
     return (
-        f"stalled at t = {loop.data.time:.1f} s: no arm finished a move for "
-        f"{loop.config.stall_time:g} s; {cause}"
+        f"stalled at t = {now:.1f} s: no arm finished a move for "
+        f"{config.stall_time:g} s; {cause}"
     )

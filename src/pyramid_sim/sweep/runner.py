@@ -56,7 +56,7 @@ def run_one(spec: RunSpec) -> RunResult:
     start = time.perf_counter()
     try:
         from ..core.plan import make_plan
-        from ..physics.build import run_build
+        from ..jobs.build import run_build
 
         config = spec.config()
         result = run_build(make_plan(spec.structure, config, spec.arms), config)

@@ -1,5 +1,5 @@
-"""One build from settings to result: plan, reach check, physics, judgement, and optionally
-its video and a still of the finished structure."""
+"""One build from plan to judged result: the physics loop, the judge, and optionally its video
+and a still of the finished structure. The physics measures; this module judges."""
 
 from __future__ import annotations
 
@@ -8,20 +8,11 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..config import SimConfig, VideoConfig
-from ..core.plan import Plan, make_plan
-from ..core.structures import StructureSpec
+from ..core.plan import Plan
 from ..output.judge import judge
 from ..output.result import BuildResult, VideoInfo
-from .hooks import BuildHooks
-from .loop import BuildLoop
-from .reach import require_reachable
-
-
-def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
-    """The plan, with every pose checked by IK: raises ConfigError before any physics."""
-    plan = make_plan(spec, config, arms)
-    require_reachable(plan, config)
-    return plan
+from ..physics.hooks import BuildHooks
+from ..physics.loop import BuildLoop
 
 
 def run_build(
@@ -36,7 +27,7 @@ def run_build(
     """Simulate the plan and judge it; optionally record an MP4 of the whole build and a still
     of the final structure (rendering is imported only then, and its GL context is made before
     any physics runs, so a missing backend costs nothing)."""
-    loop = BuildLoop(plan, config)
+    loop = BuildLoop.of(plan, config)
     hooks = BuildHooks(on_placed=on_placed)
     recorder = still = None
     if video is not None or snapshot is not None:

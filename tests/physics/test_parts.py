@@ -1,0 +1,109 @@
+"""Each part of a build's control step made alone, from a compiled scene and the parts it
+talks to, without a BuildLoop: custody, dispatch, the zone watch, the stop reasons and the
+readout."""
+
+from dataclasses import replace
+
+import mujoco
+import numpy as np
+import pytest
+
+from pyramid_sim.config import SimConfig
+from pyramid_sim.core.structures import StructureSpec
+from pyramid_sim.core.zone import Zone
+from pyramid_sim.physics import names as c
+from pyramid_sim.physics.custody import BrickCustody
+from pyramid_sim.physics.dispatch import ArmDispatch
+from pyramid_sim.physics.handles import SceneHandles
+from pyramid_sim.physics.ik import DualArmIK
+from pyramid_sim.physics.parts import make_parts, schedule_zones, start_at_clear_poses
+from pyramid_sim.physics.reach import prepare
+from pyramid_sim.physics.readout import measurements
+from pyramid_sim.physics.scene import build_scene, park_position
+from pyramid_sim.physics.spawner import Spawner
+from pyramid_sim.physics.stops import stall_reason
+from pyramid_sim.physics.zone_watch import ZoneWatch
+
+CONFIG = SimConfig()
+PLAN = prepare(StructureSpec("pyramid-even", layers=1), CONFIG)
+BRICKS = len(PLAN.bricks) + CONFIG.spare_bricks
+
+
+@pytest.fixture
+def scene():
+    model = build_scene(CONFIG, BRICKS).model
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    handles = SceneHandles(model, CONFIG.robot_spec, BRICKS)
+    spawner = Spawner(model, CONFIG.robot_spec, handles, PLAN.spawn, clearance=0.02,
+                      arm_clearance=0.10, jitter=0.0, seed=0)
+    return model, data, handles, spawner
+
+
+def test_custody_alone_feeds_the_spot_from_the_magazine_in_order(scene):
+    model, data, handles, spawner = scene
+    custody = BrickCustody(data, handles, spawner, len(PLAN.bricks), CONFIG)
+    assert custody.needs_brick() and custody.carry == {"left": None, "right": None}
+    assert custody.feed_spot() == 0  # the first magazine slot, set on the spot
+    q = handles.brick_qpos[0]
+    assert np.allclose(data.qpos[q : q + 2], [PLAN.spawn.x, PLAN.spawn.y], atol=1e-9)
+    assert spawner.current == 0  # the loop feeds the spot again only once it is picked
+    assert custody.needs_brick()  # one brick on the spot, two to pick
+    assert np.allclose(data.qpos[handles.brick_qpos[1] : handles.brick_qpos[1] + 3],
+                       park_position(1))  # the next still waits in the magazine
+
+
+def test_dispatch_alone_hands_the_first_picks_out_by_the_schedule(scene):
+    model, data, handles, spawner = scene
+    ik = DualArmIK(CONFIG)
+    start_at_clear_poses(model, data, handles, ik, CONFIG)
+    tcp = {a: ik.tcp_pose(a) for a in c.ARMS}
+    dispatch = ArmDispatch(PLAN, CONFIG, spawner, tcp, schedule_zones("lockstep", PLAN, CONFIG))
+    assert dispatch.step_of("left") is None and dispatch.step_of("right") is None
+    assert dispatch.schedule(0.0) is False  # not finished: tasks handed out
+    first = {a: dispatch.task_of[a] for a in c.ARMS}
+    assert all(t is not None for t in first.values())
+    busy = [a for a in c.ARMS if dispatch.step_of(a) is not None]
+    assert busy  # at least one arm has its first step, the seed's hover
+    pose = dispatch.advance(busy[0], 0.0, lambda *done: None)
+    assert np.isfinite([pose.x, pose.y, pose.z]).all()
+
+
+def test_the_zone_watch_alone_counts_both_arms_in_one_zone(scene):
+    model, data, handles, _ = scene
+    ik = DualArmIK(CONFIG)
+    start_at_clear_poses(model, data, handles, ik, CONFIG)
+
+    class Heard:
+        def __init__(self):
+            self.reports = []
+
+        def report_zone(self, arm, outside, zone):
+            self.reports.append((arm, outside, zone))
+
+    heard = Heard()
+    watch = ZoneWatch(schedule_zones("overlap", PLAN, CONFIG), data, handles)
+    assert watch.update(heard) is False and watch.violations == 0
+    assert {(a, z) for a, _, z in heard.reports} == {(a, z) for a in c.ARMS for z in watch.zones}
+    assert all(outside for _, outside, _ in heard.reports)  # the clear poses are outside
+    everywhere = ZoneWatch({"all": Zone(-5.0, 5.0, -5.0, 5.0)}, data, handles)
+    assert everywhere.update(heard) is True and everywhere.violations == 1
+
+
+def test_a_stall_reason_alone_names_what_the_arms_wait_for():
+    parts = make_parts(PLAN, CONFIG)
+    text = stall_reason(parts.dispatch, parts.custody, parts.spawner, CONFIG, 61.0)
+    assert text == "stalled at t = 61.0 s: no arm finished a move for 60 s; arms idle"
+    parts.dispatch.schedule(0.0)
+    text = stall_reason(parts.dispatch, parts.custody, parts.spawner, CONFIG, 61.0)
+    assert "arm not reaching its target" in text or "waiting for" in text
+
+
+def test_the_readout_alone_reports_the_state_it_is_given():
+    parts = make_parts(PLAN, replace(CONFIG, seed=4))
+    got = measurements(parts, physics_steps=0, failure="stopped by hand", wall=0.5)
+    assert got.failure == "stopped by hand" and got.physics_steps == 0 and got.sim_time == 0.0
+    assert got.final_pos.shape == (BRICKS, 3)
+    assert np.allclose(got.final_pos[2], park_position(2))  # nothing has moved
+    assert got.zone_violations == 0 and got.drops == () and got.slip_mm == {}
+    assert set(got.contact_friction) == {"brick_brick", "brick_table", "pad_brick"}
