@@ -241,7 +241,7 @@ def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, rai
     from pyramid_sim.sweep import runner
 
     try:
-        with runner._native_stderr_held(True):
+        with runner.native_stderr_held(True):
             os.write(2, b"native retry warning\n")
             if raised is not None:
                 raise raised("refused" if raised is ConnectionError else "other")

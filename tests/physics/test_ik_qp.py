@@ -93,7 +93,7 @@ def test_the_qp_solution_is_minks():
         ref, _, flag, _ = daqp.solve(qp.P, qp.q, qp.G, qp.h, np.full(qp.h.size, -1e30),
                                      np.zeros(qp.h.size, dtype=c_int))
         assert flag > 0
-        np.testing.assert_allclose(ik._solve() * ik.dt, ref, atol=1e-9)
+        np.testing.assert_allclose(ik.solve_velocity() * ik.dt, ref, atol=1e-9)
 
 
 def test_carried_gaps_never_rule_out_a_pair_within_reach():

@@ -170,10 +170,10 @@ class DualArmIK:
     def step(self) -> None:
         """One control step: solve for joint velocities and integrate them over dt.
 
-        The change of velocity stays within the arm's acceleration limits (see `_solve`): a
+        The change of velocity stays within the arm's acceleration limits (see `solve_velocity`): a
         sudden reversal (near the shoulder singularity) would shake the brick loose.
         """
-        velocity = self._solve()
+        velocity = self.solve_velocity()
         q_next = self.configuration.integrate(velocity, self.dt)
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
         q_next[self.limited_q] = np.clip(
@@ -182,7 +182,7 @@ class DualArmIK:
         self.velocity = velocity
         self.configuration.update(q_next)
 
-    def _solve(self) -> np.ndarray:
+    def solve_velocity(self) -> np.ndarray:
         """Joint velocities from the QP of mink's tasks and limits (`IKProblem`).
 
         Each joint's change of velocity is bounded by its acceleration limit inside the QP, so

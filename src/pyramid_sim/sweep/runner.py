@@ -92,7 +92,7 @@ ONE_BLAS_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM
 def _worker_loop(conn: mp.connection.Connection, run: Callable[[RunSpec], RunResult]) -> None:
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when a sweep stops
-    from ..physics import build  # noqa: F401  import MuJoCo and mink once, before any run
+    from ..jobs import build  # noqa: F401  import MuJoCo and mink once, before any run
     while True:
         try:
             spec = conn.recv()
@@ -223,7 +223,7 @@ def ray_connection_advice(address: str | None, err: Exception) -> str:
 
 
 @contextlib.contextmanager
-def _native_stderr_held(hold: bool) -> Iterator[None]:
+def native_stderr_held(hold: bool) -> Iterator[None]:
     """Ray's C++ core writes a warning a second to stderr while a cluster refuses it (about
     20): held back, a refusal (ConnectionError) reads as the one line that says what to set.
     On success or another error they are passed on."""
@@ -264,7 +264,7 @@ def run_ray(
     started_here = not ray.is_initialized()
     if started_here:
         try:
-            with _native_stderr_held(address is not None):
+            with native_stderr_held(address is not None):
                 ray.init(
                     address=address, num_cpus=None if address else workers,
                     include_dashboard=False, log_to_driver=False, logging_level=logging.ERROR,
