@@ -36,8 +36,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         choose_gl_backend()  # before mujoco is imported
-        from pyramid_sim.benchmark.figures import BenchConfig, run_all
-        from pyramid_sim.benchmark.targets import table
+        from pyramid_sim.perf.figures import BenchConfig, run_all
+        from pyramid_sim.perf.targets import table
 
         bench = BenchConfig(
             layers=args.layers, robot=args.robot, frames=args.frames, sweep_builds=args.sweep_builds,

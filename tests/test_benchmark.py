@@ -1,4 +1,4 @@
-"""The benchmark runs end to end and reports every figure issue 6 names (values not judged:
+"""The benchmark runs end to end and reports every figure the benchmark names (values not judged:
 timings are reported by the benchmark, never asserted)."""
 
 import json
@@ -72,7 +72,7 @@ def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
     import time
     from types import SimpleNamespace
 
-    from pyramid_sim.benchmark.timers import timed_calls
+    from pyramid_sim.perf.timers import timed_calls
 
     def inner() -> None:
         time.sleep(0.02)
@@ -90,7 +90,7 @@ def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
 
 
 def test_a_build_size_target_is_judged_on_that_build_only():
-    from pyramid_sim.benchmark.targets import DEFAULT_STRUCTURE, TARGETS
+    from pyramid_sim.perf.targets import DEFAULT_STRUCTURE, TARGETS
 
     (lockstep,) = [t for t in TARGETS if t.key == "sim_s_per_brick"]
     figures = {"structure": DEFAULT_STRUCTURE, "robot": "panda", "sim_s_per_brick": 12.83}
