@@ -6,11 +6,12 @@ complete, so an interrupted run never leaves a half-written result, video, still
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Any, Callable, Iterator
 
 from ..errors import ConfigError
 
@@ -40,6 +41,12 @@ def write_atomic(path: Path, write: Callable[[Path], None]) -> None:
     """Call `write(tmp)` and move the finished file to `path`."""
     with atomic_path(path) as tmp:
         write(tmp)
+
+
+def write_json_atomic(path: Path, document: dict[str, Any]) -> None:
+    """`document` as indented strict JSON, written atomically."""
+    text = json.dumps(document, indent=2, allow_nan=False) + "\n"
+    write_atomic(path, lambda tmp: tmp.write_text(text))
 
 
 def check_writable_dir(path: Path, what: str = "out") -> None:
