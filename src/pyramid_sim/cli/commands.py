@@ -8,10 +8,13 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
+from typing import Sequence
 
 from ..config import SimConfig
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed, write_json_atomic
+from ..output.result import BuildResult
 from .args import (
     EXIT_FAILED,
     config_from_args,
@@ -75,24 +78,31 @@ def cmd_build(args: argparse.Namespace) -> int:
             on_frame=lambda n: frames.update(1), snapshot=snapshot,
         )
         write_json_atomic(args.out / "result.json", result.to_json())
-    print(_summary(result, args))
-    if not result.success:
-        print(f"build failed: {result.failure_reason}", file=sys.stderr)
-        return EXIT_FAILED
-    return 0
+    files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
+    print(build_summary(result, files))
+    return 0 if result.success else EXIT_FAILED
 
 
-def _summary(result, args: argparse.Namespace) -> str:
-    """The one line a build ends with: what was built, how well, and every file written."""
+def verdict(result: BuildResult) -> str:
+    """`built`, or `failed (why)` with result.json's own failure_reason: the summary opens with
+    the same judgement the file and the exit status carry, so they cannot disagree."""
+    if result.success:
+        return "built"
+    return f"failed ({' '.join((result.failure_reason or 'no reason given').split())})"
+
+
+def build_summary(result: BuildResult, files: Sequence[Path]) -> str:
+    """The one line a build ends with: the verdict, what was built, how well, and every file
+    written."""
     worst = result.worst_error_xy_mm
-    slip = "-" if result.max_slip_mm is None else f"{result.max_slip_mm}"
-    files = [str(args.out / "result.json")]
-    files += [str(p) for p in (args.video, args.snapshot) if p is not None]
+    slip = "n/a" if result.max_slip_mm is None else f"{result.max_slip_mm} mm"
+    per_brick = "n/a" if result.sim_s_per_brick is None else f"{result.sim_s_per_brick}"
+    pace = "n/a" if result.real_time_factor is None else f"{result.real_time_factor}x"
     return (
-        f"{result.bricks_placed}/{result.bricks_total} bricks in place, worst xy "
-        f"error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, max slip "
-        f"{slip} mm, {result.sim_s_per_brick} sim s/brick, "
-        f"{result.real_time_factor}x real time, {result.drops} drops -> {', '.join(files)}"
+        f"{verdict(result)}: {result.bricks_placed}/{result.bricks_total} bricks in place, "
+        f"worst xy error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, "
+        f"max slip {slip}, {per_brick} sim s/brick, {pace} real time, {result.drops} drops "
+        f"-> {', '.join(str(f) for f in files)}"
     )
 
 
