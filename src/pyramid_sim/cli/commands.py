@@ -14,6 +14,7 @@ from typing import Sequence
 from ..config import SimConfig
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed, write_json_atomic
+from ..output.lock import holding
 from ..output.result import BuildResult
 from .args import (
     EXIT_FAILED,
@@ -61,9 +62,11 @@ def cmd_build(args: argparse.Namespace) -> int:
     plan = prepare(spec, config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
     snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
-    folders = [args.out, *(p.parent for p in (args.video, args.snapshot) if p is not None)]
+    written = [(args.out, "out"), *((p.parent, f"{p.suffix[1:].lower()} path")
+                                    for p in (args.video, args.snapshot) if p is not None)]
     with (
-        removed_if_failed(folders),
+        removed_if_failed([folder for folder, _ in written]),
+        holding(written),
         tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
         tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
     ):
@@ -153,11 +156,16 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
     prepare(config.structure, SimConfig(robot=config.robot), config.arms)  # out of reach: refused
     runs = len(config.runs())
-    with tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar:
+    with (
+        removed_if_failed([args.out]),
+        holding([(args.out, "out")]),
+        tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar,
+    ):
         rows, ran = run_sweep(
             config, args.out, on_row=lambda result: bar.update(1), on_skip=bar.update
         )
-    print(report(rows, config, args.out))
+        table = report(rows, config, args.out)
+    print(table)
     ok = sum(r["success"] == "true" for r in rows)
     broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
     print(
