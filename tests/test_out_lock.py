@@ -14,7 +14,8 @@ from pyramid_sim.output.lock import LOCK_NAME, FolderBusy, folder_lock, holding
 
 
 def _build(out, *extra):
-    return ["build", "--structure", "pyramid", "--layers", "1", "--quiet", "--out", str(out), *extra]
+    return ["build", "--structure", "pyramid", "--layers", "1", "--quiet", "--out", str(out),
+            *extra]
 
 
 def test_a_second_build_into_the_folder_of_a_running_one_is_refused(tmp_path, capsys, fake_build):
@@ -116,6 +117,7 @@ def test_a_lock_file_removed_before_it_was_locked_is_taken_afresh(tmp_path, monk
 
 
 def test_folders_are_taken_once_each_in_one_order(tmp_path):
-    with holding([(tmp_path / "b", "out"), (tmp_path / "a", "mp4 path"), (tmp_path / "b", "png path")]):
+    asked = [(tmp_path / "b", "out"), (tmp_path / "a", "mp4 path"), (tmp_path / "b", "png path")]
+    with holding(asked):
         assert sorted(p.parent.name for p in tmp_path.glob(f"*/{LOCK_NAME}")) == ["a", "b"]
     assert not list(tmp_path.glob(f"*/{LOCK_NAME}"))
