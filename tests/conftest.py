@@ -70,8 +70,8 @@ def fake_build(monkeypatch):
     """Stand in for the physics behind `build` (pyramid_sim.physics.build), so the command
     line's own work (verdict, files, locks, progress) is tested in a fraction of a second with
     MuJoCo blocked. Every brick lands on its target; set `changes` to alter what was measured
-    (as tests/test_judge.py does), `frames` for frames filmed a brick, `during(i)` to act
-    before brick i is reported placed."""
+    (as tests/test_judge.py does), `frames` for the frames filmed a brick (and as many after the
+    last, as the scene settles), `during(i)` to act before brick i is reported placed."""
     import types
     from dataclasses import replace
 
@@ -89,15 +89,21 @@ def fake_build(monkeypatch):
 
     def run_build(plan, config, *, on_placed=None, video=None, on_frame=None, snapshot=None):
         filmed = 0
-        for i in range(len(plan.bricks)):
+
+        def film() -> None:  # the frames of one brick's work, or of the settling at the end
+            nonlocal filmed
             for _ in range(fake.frames if video is not None else 0):
                 filmed += 1
                 if on_frame is not None:
                     on_frame(filmed)
+
+        for i in range(len(plan.bricks)):
+            film()
             if fake.during is not None:
                 fake.during(i)
             if on_placed is not None:
                 on_placed(i + 1)
+        film()
         poses = [b.target.pose for b in plan.bricks]
         measured = Measurements(
             plan=plan, slot_of={b.index: i for i, b in enumerate(plan.bricks)},

@@ -23,6 +23,7 @@ from .args import (
     sweep_config_from_args,
     video_config_from_args,
 )
+from .progress import Progress
 
 
 def cmd_plan(args: argparse.Namespace) -> int:
@@ -55,8 +56,6 @@ def cmd_build(args: argparse.Namespace) -> int:
         from ..output.gl_backend import choose_gl_backend
 
         choose_gl_backend()  # before mujoco is imported
-    from tqdm import tqdm
-
     from ..physics.build import prepare, run_build
 
     plan = prepare(spec, config, args.arms)
@@ -67,18 +66,13 @@ def cmd_build(args: argparse.Namespace) -> int:
     with (
         removed_if_failed([folder for folder, _ in written]),
         holding(written),
-        tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
-        tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
+        Progress("bricks", len(plan.bricks), "brick", quiet=args.quiet,
+                 count_unit="frame" if video is not None else None) as progress,
     ):
-        def placed(n: int) -> None:
-            bar.update(1)
-            # The film's length is known only at the end: estimate it from the pace so far.
-            frames.total = round(frames.n * len(plan.bricks) / n)
-            frames.refresh()
-
+        progress.start()
         result = run_build(
-            plan, config, on_placed=placed, video=video,
-            on_frame=lambda n: frames.update(1), snapshot=snapshot,
+            plan, config, on_placed=progress.advance_to, video=video,
+            on_frame=lambda n: progress.count(), snapshot=snapshot,
         )
         write_json_atomic(args.out / "result.json", result.to_json())
     files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
@@ -149,8 +143,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         from ..sweep.runner import require_ray
 
         require_ray()
-    from tqdm import tqdm
-
     from ..physics.build import prepare
     from ..sweep.run import report, run_sweep
 
@@ -159,10 +151,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     with (
         removed_if_failed([args.out]),
         holding([(args.out, "out")]),
-        tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar,
+        Progress("sweep", runs, "build", quiet=args.quiet) as progress,
     ):
-        rows, ran = run_sweep(
-            config, args.out, on_row=lambda result: bar.update(1), on_skip=bar.update
+        rows, ran = run_sweep(  # the runs already in sweep.csv start the count
+            config, args.out, on_row=lambda result: progress.advance(), on_skip=progress.start
         )
         table = report(rows, config, args.out)
     print(table)
