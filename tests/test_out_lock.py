@@ -30,7 +30,7 @@ def test_a_second_build_into_the_folder_of_a_running_one_is_refused(tmp_path, ca
     assert main(_build(out)) == 0
     code, err = second
     assert code == 2 and len(err.strip().splitlines()) == 1
-    assert f"out: {str(out)!r} is in use by another pyramid-sim run (pid {os.getpid()})" in err
+    assert f"out: {str(out)!r} is held by another pyramid-sim run (pid {os.getpid()})" in err
     assert (out / "result.json").exists() and not (out / LOCK_NAME).exists()
 
 
@@ -39,7 +39,7 @@ def test_a_sweep_into_a_held_folder_is_refused_before_it_runs(tmp_path, refused,
     with folder_lock(out):
         err = refused(["sweep", "--structure", "pyramid", "--layers", "1", "--friction", "1",
                        "--quiet", "--out", str(out)])
-        assert "is in use by another pyramid-sim run" in err
+        assert "is held by another pyramid-sim run" in err
         assert [p.name for p in out.iterdir()] == [LOCK_NAME]  # no sweep.csv begun
     assert list(out.iterdir()) == []
 
@@ -50,7 +50,7 @@ def test_a_video_folder_outside_out_is_held_too_and_a_refusal_leaves_nothing(
     films, out = tmp_path / "films", tmp_path / "a" / "run"
     with folder_lock(films):
         err = refused(_build(out, "--video", str(films / "a.mp4")))
-        assert f"mp4 path: {str(films)!r} is in use by another pyramid-sim run" in err
+        assert f"mp4 path: {str(films)!r} is held by another pyramid-sim run" in err
     assert not (tmp_path / "a").exists()  # made for its lock, removed with it
 
 

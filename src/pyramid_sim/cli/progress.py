@@ -50,7 +50,8 @@ class Progress:
             self._bars.append(tqdm(total=self.total, initial=done, unit=self.unit,
                                    desc=self.desc, file=self.stream))
             if self.count_unit is not None:
-                self._bars.append(tqdm(unit=self.count_unit, desc=f"{self.count_unit}s",
+                # no total, so tqdm writes the count and unit run together: spaced here
+                self._bars.append(tqdm(unit=f" {self.count_unit}", desc=f"{self.count_unit}s",
                                        position=1, file=self.stream))
             return
         self._step = self._tenths(done)

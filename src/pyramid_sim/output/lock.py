@@ -67,9 +67,9 @@ def _acquire(path: Path, what: str) -> int:
             holder = _holder(fd)
             os.close(fd)
             raise FolderBusy(
-                f"{what}: {str(path.parent)!r} is in use by another pyramid-sim run ({holder}); "
-                "accepted a folder no running build or sweep writes to: wait for it to end or "
-                "choose another"
+                f"{what}: {str(path.parent)!r} is held by another pyramid-sim run ({holder}); "
+                "accepted a folder no other run holds: wait for that one to end or choose "
+                "another"
             ) from None
         except BaseException:
             os.close(fd)
