@@ -14,7 +14,6 @@ from typing import Callable, NoReturn, Sequence
 
 from ..config import CAMERAS, SCHEDULES, SimConfig, VideoConfig
 from ..core.plan import ARM_CHOICES
-from ..errors import ConfigError
 from ..core.structures import (
     MAX_BRICKS,
     MAX_COURSE,
@@ -22,6 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
+from ..errors import ConfigError
 from ..params import PARAMS
 from ..robots import DEFAULT_ROBOT, PRESETS
 from ..sweep.grid import SweepConfig, parse_axis
@@ -172,10 +172,10 @@ def add_video_args(p: argparse.ArgumentParser) -> None:
                    help=f"of the video and the snapshot, even, 16 to 1920 (default {d.width})")
     p.add_argument("--video-height", type=whole("video height"), metavar="PIXELS",
                    help=f"of the video and the snapshot, even, 16 to 1080 (default {d.height})")
-    for old in ("width", "height"):
-        p.add_argument(f"--{old}", nargs="?", help=argparse.SUPPRESS, action=renamed(
-            f"--video-{old}", f"the video's {old} in pixels; a wall's course width is --wall-width"
-            if old == "width" else f"the video's {old} in pixels"))
+    p.add_argument("--width", nargs="?", help=argparse.SUPPRESS, action=renamed(
+        "--video-width", "the video's width in pixels; a wall's course width is --wall-width"))
+    p.add_argument("--height", nargs="?", help=argparse.SUPPRESS, action=renamed(
+        "--video-height", "the video's height in pixels"))
     p.add_argument("--camera", type=one_of("camera", CAMERAS), metavar="|".join(CAMERAS),
                    help=f"{', '.join(CAMERAS[:-1])} or {CAMERAS[-1]} (default {d.camera})")
     p.add_argument("--shadows", action=argparse.BooleanOptionalAction,
