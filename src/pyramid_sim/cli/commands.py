@@ -48,6 +48,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def cmd_build(args: argparse.Namespace) -> int:
+    """Simulate one build into its held folders; exit 0 iff result.json says it succeeded."""
     config = config_from_args(args)
     video_config = video_config_from_args(args)
     spec = spec_from_args(args, config)
@@ -137,6 +138,8 @@ def cmd_view(args: argparse.Namespace) -> int:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
+    """Run what the grid lacks in its held folder's sweep.csv; exit 1 if a run crashed or timed
+    out, as such a point measures nothing."""
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
     if config.backend == "ray":
