@@ -64,3 +64,66 @@ def teleport():
         loop.handles.place_brick(data, slot, position, None if yaw is None else yaw_quaternion(yaw))
 
     return move
+
+
+@pytest.fixture
+def fake_build(monkeypatch):
+    """Stand in for the physics behind `build` (the reach check and jobs.build), so the command
+    line's own work (verdict, files, locks, progress) is tested in a fraction of a second with
+    MuJoCo blocked. Every brick lands on its target; set `changes` to alter what was measured
+    (as tests/test_judge.py does), `frames` for the frames filmed a brick (and as many after the
+    last, as the scene settles), `during(i)` to act before brick i is reported placed."""
+    import types
+    from dataclasses import replace
+
+    import numpy as np
+
+    from pyramid_sim.core.measurements import Measurements
+    from pyramid_sim.core.plan import make_plan
+    from pyramid_sim.core.poses import yaw_quaternion
+    from pyramid_sim.output.judge import judge
+
+    fake = types.SimpleNamespace(changes={}, frames=0, during=None)
+
+    def prepare(spec, config, arms="both"):
+        return make_plan(spec, config, arms)
+
+    def run_build(plan, config, *, on_placed=None, video=None, on_frame=None, snapshot=None):
+        filmed = 0
+
+        def film() -> None:  # the frames of one brick's work, or of the settling at the end
+            nonlocal filmed
+            for _ in range(fake.frames if video is not None else 0):
+                filmed += 1
+                if on_frame is not None:
+                    on_frame(filmed)
+
+        for i in range(len(plan.bricks)):
+            film()
+            if fake.during is not None:
+                fake.during(i)
+            if on_placed is not None:
+                on_placed(i + 1)
+        film()
+        poses = [b.target.pose for b in plan.bricks]
+        measured = Measurements(
+            plan=plan, slot_of={b.index: i for i, b in enumerate(plan.bricks)},
+            final_pos=np.array([p.position for p in poses]),
+            final_quat=np.array([yaw_quaternion(p.yaw) for p in poses]),
+            slip_mm={b.index: 1.0 for b in plan.bricks}, drops=(), knocks=(), sim_time=12.0,
+            wall_time=1.0, arm_arm_contacts=0, arm_body_contacts=0, zone_violations=0,
+            finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
+            speed_joint=0, warnings={}, failure=None, idle_motion_mm=0.0,
+            contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
+            closest_arm_m=0.1, closest_arm_time=1.0, physics_steps=6000,
+        )
+        return judge(replace(measured, **fake.changes), config)
+
+    reach = types.ModuleType("pyramid_sim.physics.reach")
+    reach.prepare = prepare
+    jobs = types.ModuleType("pyramid_sim.jobs.build")
+    jobs.run_build = run_build
+    monkeypatch.setitem(sys.modules, "pyramid_sim.physics.reach", reach)
+    monkeypatch.setitem(sys.modules, "pyramid_sim.jobs.build", jobs)
+    monkeypatch.setenv("MUJOCO_GL", "egl")  # a --video run chooses no backend of its own
+    return fake

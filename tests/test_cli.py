@@ -110,3 +110,47 @@ def test_reach_prints_the_largest_size_of_every_structure(capsys):
     assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers", "corner-wall"}
     assert rows["pyramid-even"] == "5"  # the README's figure; the default 4 fits under it
     assert int(rows["corner-wall"]) >= 5  # the seed's width
+
+
+def _summary_of(capsys) -> str:
+    (line,) = capsys.readouterr().out.strip().splitlines()
+    return line
+
+
+def test_a_build_ends_with_one_verdict_in_its_line_its_file_and_its_exit_status(
+    tmp_path, capsys, fake_build
+):
+    """Both bricks in place but one slid past the limit: the line opens with `failed (why)`,
+    as result.json says, and the exit status is 1; a clean build opens with `built`."""
+    out = tmp_path / "run"
+    args = ["build", "--structure", "pyramid-even", "--layers", "1", "--quiet", "--out", str(out)]
+    fake_build.changes = {"slip_mm": {0: 5.5, 1: 0.5}}
+    assert main(args) == 1
+    doc = json.loads((out / "result.json").read_text())
+    line = _summary_of(capsys)
+    assert not doc["success"] and doc["checks"]["slip"] is False
+    assert line.startswith(f"failed ({doc['failure_reason']}): 2/2 bricks in place, ")
+    assert "slid 5.5 mm in the hand, over the 5 mm limit" in line
+    fake_build.changes = {}
+    assert main(args) == 0
+    doc = json.loads((out / "result.json").read_text())
+    assert doc["success"] and _summary_of(capsys).startswith("built: 2/2 bricks in place, ")
+
+
+def test_a_summary_without_a_slip_measured_says_n_a(tmp_path, capsys, fake_build):
+    fake_build.changes = {"slip_mm": {}}
+    assert main(["build", "--layers", "1", "--quiet", "--out", str(tmp_path / "run")]) == 0
+    line = _summary_of(capsys)
+    assert "max slip n/a," in line and " - mm" not in line and "None" not in line
+
+
+def test_the_readme_says_exit_0_iff_every_check_held_and_names_them(tmp_path, fake_build):
+    from pathlib import Path
+
+    main(["build", "--layers", "1", "--quiet", "--out", str(tmp_path / "run")])
+    names = json.loads((tmp_path / "run" / "result.json").read_text())["checks"]
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    section = readme[readme.index("## Command line"):readme.index("## Outputs")]
+    text = " ".join(section.split())
+    assert "Exit 0 when the build succeeded: every check in `result.json`'s `checks` held" in text
+    assert [n for n in names if f"`{n}`" not in section] == []

@@ -110,3 +110,88 @@ def test_render_script_writes_where_it_is_told_in_any_spelling(args, out, video)
     command, _ = script.build_args(args)
     parsed = make_parser().parse_args(command)  # the CLI reads it: the last --out wins
     assert (str(parsed.out), str(parsed.video)) == (out, video)
+
+
+@pytest.mark.parametrize("old, new", [("--width", "--video-width"), ("--height", "--video-height")])
+@pytest.mark.parametrize("value", [["480"], []])
+def test_the_video_size_flags_old_names_are_refused_naming_the_new(tmp_path, refused, fake_build,
+                                                                   old, new, value):
+    out = tmp_path / "run"
+    err = refused(["build", "--out", str(out), "--video", str(out / "b.mp4"), old, *value])
+    assert f"{old} is now {new} (the video's" in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--fps", "20"], "--fps: a setting of the video, but no --video is given"),
+        (["--speedup", "4"], "--speedup: a setting of the video"),
+        (["--video-width", "320"], "--video-width: a setting of the video and the snapshot, but "
+                                   "neither --video nor --snapshot is given"),
+        (["--video-height", "240"], "--video-height: a setting of the video and the snapshot"),
+        (["--camera", "top"], "--camera: a setting of the video and the snapshot"),
+        (["--shadows"], "--shadows: a setting"),
+        (["--no-shadows"], "--shadows: a setting"),
+        (["--antialias", "4"], "--antialias: a setting"),
+        (["--snapshot", "s.png", "--fps", "20"], "--fps: a setting of the video, but no --video"),
+    ],
+)
+def test_a_video_setting_without_its_output_is_refused_not_ignored(
+    tmp_path, monkeypatch, refused, fake_build, args, words
+):
+    monkeypatch.chdir(tmp_path)
+    err = refused(["build", "--layers", "1", "--out", "run", *args])
+    assert words in err and "accepted with --video PATH.mp4" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_still_takes_the_settings_it_uses(tmp_path, capsys, fake_build):
+    out = tmp_path / "run"
+    assert main(["build", "--layers", "1", "--quiet", "--out", str(out), "--snapshot",
+                 str(out / "s.png"), "--camera", "top", "--video-width", "320"]) == 0
+
+
+def test_no_command_prints_the_usage_and_exits_2(capsys):
+    assert main([]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.startswith("usage: pyramid-sim")
+    assert all(name in captured.err
+               for name in ("plan", "build", "view", "sweep", "reach", "scene"))
+
+
+def _commands() -> dict:
+    import argparse
+
+    (sub,) = [a for a in make_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    return sub.choices
+
+
+def test_help_shows_every_default_and_the_choices():
+    import argparse
+
+    from pyramid_sim.config import CAMERAS
+    from pyramid_sim.core.plan import ARM_CHOICES
+
+    no_default = {"--video", "--snapshot", "--goals"}  # nothing is written, or read, unless given
+    missing = []
+    for name, parser in _commands().items():
+        for action in parser._actions:
+            flag = action.option_strings[0] if action.option_strings else None
+            if (flag is None or action.help == argparse.SUPPRESS or action.required
+                    or isinstance(action, argparse._HelpAction) or flag in no_default):
+                continue
+            if "default" not in action.help:
+                missing.append(f"{name} {flag}")
+    assert missing == []
+    build = _commands()["build"].format_help()
+    assert "(default runs/latest)" in " ".join(build.split())
+    assert "(default runs/sweep)" in " ".join(_commands()["sweep"].format_help().split())
+    build_help = _help_of(_commands()["build"])
+    assert all(arm in build_help["--arms"] for arm in ARM_CHOICES)
+    assert all(camera in build_help["--camera"] for camera in CAMERAS)
+    assert all(arm in _help_of(_commands()["reach"])["--arms"] for arm in (*ARM_CHOICES, "all"))
+
+
+def _help_of(parser) -> dict:
+    return {a.option_strings[0]: a.help for a in parser._actions if a.option_strings}

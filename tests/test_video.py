@@ -22,8 +22,8 @@ def _run(args, tmp_path):
 def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
     import imageio.v2 as imageio
 
-    proc = _run(["--out", "a", "--video", "a/build.mp4", "--fps", "20", "--width", "320",
-                 "--height", "240", "--snapshot", "a/final.png"], tmp_path)
+    proc = _run(["--out", "a", "--video", "a/build.mp4", "--fps", "20", "--video-width", "320",
+                 "--video-height", "240", "--snapshot", "a/final.png"], tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert "a/result.json, a/build.mp4, a/final.png" in proc.stdout  # the summary names each
     doc = json.loads((tmp_path / "a" / "result.json").read_text())
@@ -48,7 +48,7 @@ def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
     [
         (["--video", "/proc/nope/x.mp4"], "mp4 path: '/proc' is not writable"),
         (["--video", "v.mp4", "--camera", "sky"], "camera"),
-        (["--video", "v.mp4", "--width", "4000"], "width"),
+        (["--video", "v.mp4", "--video-width", "4000"], "video width"),
         (["--video", "v.txt"], "mp4"),
         (["--video", "v.mp4", "--antialias", "3"], "antialias"),
         (["--video", "v.mp4", "--speedup", "0"], "speedup"),
@@ -143,7 +143,7 @@ def test_speedup_films_k_simulated_seconds_a_second(tmp_path):
     import imageio.v2 as imageio
 
     proc = _run(["--out", "s", "--video", "s/fast.mp4", "--fps", "20", "--speedup", "4",
-                 "--width", "160", "--height", "120"], tmp_path)
+                 "--video-width", "160", "--video-height", "120"], tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads((tmp_path / "s" / "result.json").read_text())
     frames = sum(1 for _ in imageio.get_reader(tmp_path / "s" / "fast.mp4"))

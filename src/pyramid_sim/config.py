@@ -184,14 +184,14 @@ class VideoConfig:
 
     def __post_init__(self) -> None:
         check_range("fps", self.fps, 1, 120)
-        check_range("width", self.width, 16, 1920)
-        check_range("height", self.height, 16, 1080)
+        check_range("video width", self.width, 16, 1920)
+        check_range("video height", self.height, 16, 1080)
         check_range("speedup", self.speedup, 0.1, 100.0)
         if self.antialias not in (0, 2, 4, 8):
             raise ConfigError(f"antialias: {self.antialias} samples; accepted 0, 2, 4 or 8")
         if self.width % 2 or self.height % 2:
             raise ConfigError(
-                f"size: {self.width}x{self.height} must be even in both (H.264); "
+                f"video size: {self.width}x{self.height} must be even in both (H.264); "
                 "accepted width 16 to 1920, height 16 to 1080"
             )
         if self.camera not in CAMERAS:

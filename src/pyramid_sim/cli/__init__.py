@@ -29,7 +29,7 @@ COMMANDS = {
 def make_parser() -> a.Parser:
     parser = a.Parser(prog="pyramid-sim", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"pyramid-sim {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=a.Parser)
+    sub = parser.add_subparsers(dest="command", parser_class=a.Parser, metavar="COMMAND")
     plan = sub.add_parser("plan", help="print the build plan as JSON, without simulating")
     a.add_structure_args(plan)
     a.add_physics_args(plan)
@@ -37,8 +37,7 @@ def make_parser() -> a.Parser:
     a.add_structure_args(build)
     a.add_physics_args(build)
     a.add_schedule_arg(build)
-    build.add_argument("--out", type=Path, default=Path("runs/latest"), help="output folder")
-    build.add_argument("--quiet", action="store_true", help="no progress bars")
+    a.add_out_args(build, Path("runs/latest"))
     a.add_video_args(build)
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     a.add_structure_args(view)
@@ -54,8 +53,10 @@ def make_parser() -> a.Parser:
                        help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)")
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     a.add_robot_arg(reach)
-    reach.add_argument("--arms", type=a.one_of("arms", (*ARM_CHOICES, "all")), default="all",
-                       help="which arm set to check (default all three)")
+    arm_sets = (*ARM_CHOICES, "all")
+    reach.add_argument("--arms", type=a.one_of("arms", arm_sets), default="all",
+                       metavar="|".join(arm_sets),
+                       help="the arm set to check: both, left, right, or all three (default all)")
     return parser
 
 
@@ -68,7 +69,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     # default SIGTERM ends Python without running any `finally`.
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, _exit_on_sigterm)
-    args = make_parser().parse_args(argv)
+    parser = make_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:  # what to run is missing: the usage, as argparse refuses
+        parser.print_help(sys.stderr)
+        return a.EXIT_USAGE
     try:
         return COMMANDS[args.command](args)
     except ConfigError as err:

@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 from typing import Callable, NoReturn, Sequence
 
-from ..config import SCHEDULES, SimConfig, VideoConfig
+from ..config import CAMERAS, SCHEDULES, SimConfig, VideoConfig
 from ..core.plan import ARM_CHOICES
 from ..core.structures import (
     MAX_BRICKS,
@@ -21,6 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
+from ..errors import ConfigError
 from ..params import PARAMS
 from ..robots import DEFAULT_ROBOT, PRESETS
 from ..sweep.grid import SweepConfig, parse_axis
@@ -29,8 +30,8 @@ EXIT_FAILED = 1
 EXIT_USAGE = 2
 SWEEP_JITTER_MM = 2.0  # a sweep's spawned bricks land up to this far off the spot by default
 
-# size option -> (flag, accepted values). `width` is `--wall-width`: `build --width` is the
-# video's width.
+# size option -> (flag, accepted values). `width` is `--wall-width`, never taken for the video's
+# (`--video-width`).
 SIZE_FLAGS = {
     "layers": ("--layers", f"1 to {MAX_LAYERS}"),
     "bricks": ("--bricks", f"1 to {MAX_BRICKS}"),
@@ -87,12 +88,14 @@ def _size_help(option: str) -> str:
 
 def add_robot_arg(p: argparse.ArgumentParser) -> None:
     p.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=DEFAULT_ROBOT,
+                   metavar="|".join(PRESETS),
                    help=f"{', '.join(f'{n} ({r.summary})' for n, r in PRESETS.items())}; "
                         f"default {DEFAULT_ROBOT}")
 
 
 def add_schedule_arg(p: argparse.ArgumentParser) -> None:
     p.add_argument("--schedule", type=one_of("schedule", SCHEDULES), default=SCHEDULES[0],
+                   metavar="|".join(SCHEDULES),
                    help="lockstep: the seed's four phases (default); overlap: each arm carries "
                         "its brick straight to its place, the arms taking turns in the zone")
 
@@ -109,8 +112,9 @@ def add_structure_args(p: argparse.ArgumentParser) -> None:
                    help="list: place goals, JSON or CSV of x, y, z, yaw (examples in "
                         "pyramid_sim/assets/goals/)")
     p.add_argument("--arms", type=one_of("arms", ARM_CHOICES), default="both",
-                   help="both (the bricks split between the arms, as the seed's) or one arm "
-                        "building alone (default both)")
+                   metavar="|".join(ARM_CHOICES),
+                   help="both (the bricks split between the arms, as the seed's), or left or "
+                        "right building alone (default both)")
 
 
 def add_physics_args(p: argparse.ArgumentParser) -> None:
@@ -132,24 +136,66 @@ def add_sweep_axes(p: argparse.ArgumentParser) -> None:
                             f"{param.range_text} (default {param.default:g})")
 
 
+# dest -> (flag, what it sets: the film alone or the film and the still, VideoConfig field)
+VIDEO_OPTIONS = {
+    "fps": ("--fps", "film", "fps"), "speedup": ("--speedup", "film", "speedup"),
+    "video_width": ("--video-width", "both", "width"),
+    "video_height": ("--video-height", "both", "height"),
+    "camera": ("--camera", "both", "camera"), "shadows": ("--shadows", "both", "shadows"),
+    "antialias": ("--antialias", "both", "antialias"),
+}
+
+
+def renamed(new: str, note: str) -> type[argparse.Action]:
+    """A flag that is no more: refused in one line giving its new name, with or without a
+    value after it."""
+
+    class Renamed(argparse.Action):
+        def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                     values: object, option_string: str | None = None) -> None:
+            parser.error(f"{option_string} is now {new} ({note})")
+
+    return Renamed
+
+
 def add_video_args(p: argparse.ArgumentParser) -> None:
+    """The film's and the still's flags. Their defaults are None here (the help text names the
+    real ones) so a setting given without --video or --snapshot can be told and refused."""
     d = VideoConfig()
-    p.add_argument("--video", type=Path, help="render the build to this MP4 (H.264)")
-    p.add_argument("--snapshot", type=Path, help="write a PNG of the final structure")
-    p.add_argument("--fps", type=whole("fps"), default=d.fps, help=f"1 to 120 (default {d.fps})")
-    p.add_argument("--width", type=whole("width"), default=d.width,
-                   help=f"pixels, even, 16 to 1920 (default {d.width})")
-    p.add_argument("--height", type=whole("height"), default=d.height,
-                   help=f"pixels, even, 16 to 1080 (default {d.height})")
-    p.add_argument("--camera", default=d.camera, help=f"overview, front or top (default {d.camera})")
-    p.add_argument("--shadows", action=argparse.BooleanOptionalAction, default=d.shadows,
-                   help="render shadows (about 4x the render cost)")
-    p.add_argument("--speedup", type=number("speedup"), default=d.speedup, metavar="K",
+    p.add_argument("--video", type=Path, metavar="PATH.mp4",
+                   help="render the build to this MP4 (H.264)")
+    p.add_argument("--snapshot", type=Path, metavar="PATH.png",
+                   help="write a PNG of the final structure")
+    p.add_argument("--fps", type=whole("fps"),
+                   help=f"video frames a second, 1 to 120 (default {d.fps})")
+    p.add_argument("--video-width", type=whole("video width"), metavar="PIXELS",
+                   help=f"of the video and the snapshot, even, 16 to 1920 (default {d.width})")
+    p.add_argument("--video-height", type=whole("video height"), metavar="PIXELS",
+                   help=f"of the video and the snapshot, even, 16 to 1080 (default {d.height})")
+    p.add_argument("--width", nargs="?", help=argparse.SUPPRESS, action=renamed(
+        "--video-width", "the video's width in pixels; a wall's course width is --wall-width"))
+    p.add_argument("--height", nargs="?", help=argparse.SUPPRESS, action=renamed(
+        "--video-height", "the video's height in pixels"))
+    p.add_argument("--camera", type=one_of("camera", CAMERAS), metavar="|".join(CAMERAS),
+                   help=f"{', '.join(CAMERAS[:-1])} or {CAMERAS[-1]} (default {d.camera})")
+    p.add_argument("--shadows", action=argparse.BooleanOptionalAction,
+                   help="render shadows, about 4x the render cost (default off)")
+    p.add_argument("--speedup", type=number("speedup"), metavar="K",
                    help="simulated seconds a second of video: one frame every K/fps simulated "
                         f"seconds, so K=4 makes a 4-minute build a 1-minute film; [0.1, 100] "
                         f"(default {d.speedup:g})")
-    p.add_argument("--antialias", type=whole("antialias"), default=d.antialias, metavar="SAMPLES",
-                   help="multisample anti-aliasing: 0 (default), 2, 4 or 8 (4 costs ~1.7x)")
+    p.add_argument("--antialias", type=whole("antialias"), metavar="SAMPLES",
+                   help=f"multisample anti-aliasing: 0, 2, 4 or 8, 4 costing ~1.7x (default "
+                        f"{d.antialias})")
+
+
+def add_out_args(p: argparse.ArgumentParser, default: Path) -> None:
+    """--out and --quiet, as build and sweep share them."""
+    p.add_argument("--out", type=Path, default=default, metavar="DIR",
+                   help=f"output folder, held by this run while it runs (default {default})")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress report on stderr (default: one, a bar on a terminal, a few "
+                        "lines elsewhere)")
 
 
 def add_sweep_args(p: argparse.ArgumentParser) -> None:
@@ -166,11 +212,11 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--timeout", type=number("timeout"), default=900.0,
                    help="seconds a run may take before it is stopped and failed (default 900)")
     p.add_argument("--backend", type=one_of("backend", ("process", "ray")), default="process",
+                   metavar="process|ray",
                    help="process (worker processes on this machine, default) or ray")
     p.add_argument("--ray-address", help="with --backend ray: an existing Ray cluster (default: "
                    "start one here)")
-    p.add_argument("--out", type=Path, default=Path("runs/sweep"), help="output folder")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_out_args(p, Path("runs/sweep"))
 
 
 def config_from_args(args: argparse.Namespace) -> SimConfig:
@@ -200,8 +246,26 @@ def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec
 
 
 def video_config_from_args(args: argparse.Namespace) -> VideoConfig:
-    return VideoConfig(args.fps, args.width, args.height, args.camera, args.shadows, args.antialias,
-                       args.speedup)
+    """The film's and the still's settings, the defaults where none is given; ConfigError for
+    one out of range or given without the output it sets."""
+    refuse_idle_video_options(args)
+    given = {field: getattr(args, dest) for dest, (_, _, field) in VIDEO_OPTIONS.items()}
+    return VideoConfig(**{field: value for field, value in given.items() if value is not None})
+
+
+def refuse_idle_video_options(args: argparse.Namespace) -> None:
+    """ConfigError for a video setting given without --video (or --snapshot, for those that
+    set the still too): ignored, it would let the user believe it did something."""
+    for dest, (flag, needs, _) in VIDEO_OPTIONS.items():
+        if getattr(args, dest) is None:
+            continue
+        if needs == "film" and args.video is None:
+            raise ConfigError(f"{flag}: a setting of the video, but no --video is given; "
+                              "accepted with --video PATH.mp4")
+        if args.video is None and args.snapshot is None:
+            raise ConfigError(f"{flag}: a setting of the video and the snapshot, but neither "
+                              "--video nor --snapshot is given; accepted with --video PATH.mp4 "
+                              "or --snapshot PATH.png")
 
 
 def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:

@@ -8,10 +8,14 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
+from typing import Sequence
 
 from ..config import SimConfig
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
+from ..output.lock import holding
+from ..output.result import BuildResult
 from .args import (
     EXIT_FAILED,
     config_from_args,
@@ -19,6 +23,7 @@ from .args import (
     sweep_config_from_args,
     video_config_from_args,
 )
+from .progress import Progress
 
 
 def cmd_plan(args: argparse.Namespace) -> int:
@@ -43,6 +48,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def cmd_build(args: argparse.Namespace) -> int:
+    """Simulate one build into its held folders; exit 0 iff result.json says it succeeded."""
     config = config_from_args(args)
     video_config = video_config_from_args(args)
     spec = spec_from_args(args, config)
@@ -51,50 +57,51 @@ def cmd_build(args: argparse.Namespace) -> int:
         from ..output.gl_backend import choose_gl_backend
 
         choose_gl_backend()  # before mujoco is imported
-    from tqdm import tqdm
-
     from ..jobs.build import run_build
-
     from ..physics.reach import prepare
 
     plan = prepare(spec, config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
     snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
-    folders = [args.out, *(p.parent for p in (args.video, args.snapshot) if p is not None)]
+    written = [(args.out, "out"), *((p.parent, f"{p.suffix[1:].lower()} path")
+                                    for p in (args.video, args.snapshot) if p is not None)]
     with (
-        removed_if_failed(folders),
-        tqdm(total=len(plan.bricks), unit="brick", disable=args.quiet, desc="bricks") as bar,
-        tqdm(unit="frame", disable=args.quiet or video is None, desc="frames", position=1) as frames,
+        removed_if_failed([folder for folder, _ in written]),
+        holding(written),
+        Progress("bricks", len(plan.bricks), "brick", quiet=args.quiet,
+                 count_unit="frame" if video is not None else None) as progress,
     ):
-        def placed(n: int) -> None:
-            bar.update(1)
-            # The film's length is known only at the end: estimate it from the pace so far.
-            frames.total = round(frames.n * len(plan.bricks) / n)
-            frames.refresh()
-
+        progress.start()
         result = run_build(
-            plan, config, on_placed=placed, video=video,
-            on_frame=lambda n: frames.update(1), snapshot=snapshot,
+            plan, config, on_placed=progress.advance_to, video=video,
+            on_frame=lambda n: progress.count(), snapshot=snapshot,
         )
         result.save(args.out / "result.json")
-    print(_summary(result, args))
-    if not result.success:
-        print(f"build failed: {result.failure_reason}", file=sys.stderr)
-        return EXIT_FAILED
-    return 0
+    files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
+    print(build_summary(result, files))
+    return 0 if result.success else EXIT_FAILED
 
 
-def _summary(result, args: argparse.Namespace) -> str:
-    """The one line a build ends with: what was built, how well, and every file written."""
+def verdict(result: BuildResult) -> str:
+    """`built`, or `failed (why)` with result.json's own failure_reason: the summary opens with
+    the same judgement the file and the exit status carry, so they cannot disagree."""
+    if result.success:
+        return "built"
+    return f"failed ({' '.join((result.failure_reason or 'no reason given').split())})"
+
+
+def build_summary(result: BuildResult, files: Sequence[Path]) -> str:
+    """The one line a build ends with: the verdict, what was built, how well, and every file
+    written."""
     worst = result.worst_error_xy_mm
-    slip = "-" if result.max_slip_mm is None else f"{result.max_slip_mm}"
-    files = [str(args.out / "result.json")]
-    files += [str(p) for p in (args.video, args.snapshot) if p is not None]
+    slip = "n/a" if result.max_slip_mm is None else f"{result.max_slip_mm} mm"
+    per_brick = "n/a" if result.sim_s_per_brick is None else f"{result.sim_s_per_brick}"
+    pace = "n/a" if result.real_time_factor is None else f"{result.real_time_factor}x"
     return (
-        f"{result.bricks_placed}/{result.bricks_total} bricks in place, worst xy "
-        f"error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, max slip "
-        f"{slip} mm, {result.sim_s_per_brick} sim s/brick, "
-        f"{result.real_time_factor}x real time, {result.drops} drops -> {', '.join(files)}"
+        f"{verdict(result)}: {result.bricks_placed}/{result.bricks_total} bricks in place, "
+        f"worst xy error {'(a brick not placed)' if worst is None else f'{worst:.2f} mm'}, "
+        f"max slip {slip}, {per_brick} sim s/brick, {pace} real time, {result.drops} drops "
+        f"-> {', '.join(str(f) for f in files)}"
     )
 
 
@@ -132,24 +139,29 @@ def cmd_view(args: argparse.Namespace) -> int:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
+    """Run what the grid lacks in its held folder's sweep.csv; exit 1 if a run crashed or timed
+    out, as such a point measures nothing."""
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
     if config.backend == "ray":
         from ..sweep.runner import require_ray
 
         require_ray()
-    from tqdm import tqdm
-
     from ..physics.reach import prepare
     from ..sweep.run import report, run_sweep
 
     prepare(config.structure, SimConfig(robot=config.robot), config.arms)  # out of reach: refused
     runs = len(config.runs())
-    with tqdm(total=runs, unit="build", disable=args.quiet, desc="sweep") as bar:
-        rows, ran = run_sweep(
-            config, args.out, on_row=lambda result: bar.update(1), on_skip=bar.update
+    with (
+        removed_if_failed([args.out]),
+        holding([(args.out, "out")]),
+        Progress("sweep", runs, "build", quiet=args.quiet) as progress,
+    ):
+        rows, ran = run_sweep(  # the runs already in sweep.csv start the count
+            config, args.out, on_row=lambda result: progress.advance(), on_skip=progress.start
         )
-    print(report(rows, config, args.out))
+        table = report(rows, config, args.out)
+    print(table)
     ok = sum(r["success"] == "true" for r in rows)
     broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
     print(
