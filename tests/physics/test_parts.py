@@ -107,3 +107,19 @@ def test_the_readout_alone_reports_the_state_it_is_given():
     assert np.allclose(got.final_pos[2], park_position(2))  # nothing has moved
     assert got.zone_violations == 0 and got.drops == () and got.slip_mm == {}
     assert set(got.contact_friction) == {"brick_brick", "brick_table", "pad_brick"}
+
+
+def test_an_ik_with_no_solution_stops_the_build_with_its_reason():
+    """An IK configuration outside a joint's range leaves the QP no solution: the build stops
+    at once naming it, rather than raising out of the build."""
+    from pyramid_sim.output.judge import judge
+    from pyramid_sim.physics.loop import BuildLoop
+
+    loop = BuildLoop.of(PLAN, CONFIG)
+    q = loop.ik.configuration.q.copy()
+    q[loop.ik.limited_q[1]] = loop.ik.q_high[1] + 0.5  # the left shoulder far past its range
+    loop.ik.configuration.update(q)
+    result = judge(loop.run(), CONFIG)
+    assert not result.success and "finished" in result.failed_checks
+    assert result.failure_reason.startswith("the IK found no joint motion within the arms' limits")
+    assert result.sim_time_s < 0.1

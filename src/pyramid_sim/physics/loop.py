@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import time
 
+import mink
 import mujoco
 import numpy as np
 
@@ -17,7 +18,7 @@ from . import names as c
 from .hooks import BuildHooks
 from .parts import BuildParts, make_parts
 from .readout import measurements
-from .stops import stall_reason, warning_reason
+from .stops import no_motion_reason, stall_reason, warning_reason
 
 
 class BuildLoop:
@@ -145,7 +146,11 @@ class BuildLoop:
             if self.dispatch.schedule(self.data.time):
                 break
             self._drive_arms()
-            self._solve_ik()
+            try:
+                self._solve_ik()
+            except mink.NoSolutionFound:
+                failure = no_motion_reason(self.data.time)
+                break
             if self._step_physics():
                 failure = warning_reason(self.data)
                 break

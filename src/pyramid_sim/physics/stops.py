@@ -23,6 +23,16 @@ def warning_reason(data: mujoco.MjData) -> str:
     )
 
 
+def no_motion_reason(now: float) -> str:
+    """The failure for a control step whose IK found no joint motion within the limits (the
+    joints' ranges and speeds and the arms' distance cannot all be kept)."""
+    return (
+        f"the IK found no joint motion within the arms' limits at t = {now:.3f} s (joint "
+        "ranges, speeds and the distance between the arms cannot all be kept), so the build "
+        "was stopped"
+    )
+
+
 def stall_reason(
     dispatch: ArmDispatch, custody: BrickCustody, spawner: Spawner, config: SimConfig, now: float
 ) -> str:
