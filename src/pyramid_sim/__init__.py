@@ -26,7 +26,7 @@ from .core.seed_pyramids import (
     pyramid_even,
 )
 from .core.structures import STRUCTURES, StructureSpec
-from .errors import ConfigError, PyramidSimError, UnreachableError
+from .errors import ConfigError, MachineError, PyramidSimError, UnreachableError
 from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
@@ -44,6 +44,7 @@ __all__ = [
     "GripperConfig",
     "LayoutConfig",
     "LockstepScheduler",
+    "MachineError",
     "MotionConfig",
     "Param",
     "Plan",

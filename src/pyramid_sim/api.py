@@ -18,7 +18,7 @@ from typing import Any
 from .config import SimConfig, VideoConfig
 from .core.plan import Plan, make_plan
 from .core.structures import StructureSpec
-from .errors import ConfigError
+from .errors import ConfigError, MachineError
 from .output.result import BuildResult
 from .params import BY_NAME
 
@@ -136,13 +136,13 @@ def build(
 
 def _prepare_gl(render: bool) -> None:
     """Choose the headless GL backend: before MuJoCo's first import it is the backend MuJoCo
-    binds, and after it the one the renderer makes its context with. ConfigError if `render`
+    binds, and after it the one the renderer makes its context with. MachineError if `render`
     and none can be had."""
     from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
 
     try:
         choose_gl_backend()
-    except ConfigError:
+    except MachineError:
         if render:
             raise
     if render:

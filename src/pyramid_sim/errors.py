@@ -11,3 +11,8 @@ class ConfigError(PyramidSimError, ValueError):
 
 class UnreachableError(PyramidSimError):
     """A target pose cannot be reached by the arm assigned to it."""
+
+
+class MachineError(PyramidSimError):
+    """This machine lacks what a request needs (a headless OpenGL backend, Ray, a display):
+    nothing in the input is wrong. Raised before any physics runs; the message names the fix."""

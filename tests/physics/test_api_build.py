@@ -34,7 +34,7 @@ def test_rendering_without_opengl_is_refused_before_any_physics(tmp_path):
         "    pass\n"
         "try:\n"
         f"    pyramid_sim.build('pyramid', layers=1, video={str(tmp_path / 'b.mp4')!r})\n"
-        "except pyramid_sim.ConfigError as err:\n"
+        "except pyramid_sim.MachineError as err:\n"
         "    print(err)\n"
     )
     for backend in ("glfw", "osmesa"):  # no display for GLFW; no libOSMesa on these machines

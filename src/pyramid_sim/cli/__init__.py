@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import NoReturn, Sequence
 
 from ..core.plan import ARM_CHOICES
-from ..errors import ConfigError, PyramidSimError
+from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a
 from . import commands
@@ -76,7 +76,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return a.EXIT_USAGE
     try:
         return COMMANDS[args.command](args)
-    except ConfigError as err:
+    except (ConfigError, MachineError) as err:  # refused before anything ran
         print(f"pyramid-sim: error: {err}", file=sys.stderr)
         return a.EXIT_USAGE
     except (PyramidSimError, OSError) as err:

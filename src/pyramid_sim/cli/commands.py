@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Sequence
 
 from ..config import SimConfig
-from ..errors import ConfigError
+from ..errors import ConfigError, MachineError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from ..output.result import BuildResult
@@ -112,7 +112,7 @@ def cmd_view(args: argparse.Namespace) -> int:
     if sys.platform.startswith("linux") and not (
         os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
     ):
-        raise ConfigError("view: no display (DISPLAY is not set); use build --video instead")
+        raise MachineError("view: no display (DISPLAY is not set); use build --video instead")
     import mujoco.viewer
 
     from ..physics.reach import prepare
@@ -125,7 +125,7 @@ def cmd_view(args: argparse.Namespace) -> int:
     try:
         viewer = mujoco.viewer.launch_passive(loop.model, loop.data)
     except Exception as err:  # no display, no GLFW
-        raise ConfigError(f"view: cannot open a window ({err}); use build --video instead") from None
+        raise MachineError(f"view: cannot open a window ({err}); use build --video instead") from None
 
     def show(model: mujoco.MjModel, data: mujoco.MjData) -> None:
         ahead = data.time - (time.perf_counter() - start)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import ctypes.util
 import os
 
-from ..errors import ConfigError
+from ..errors import MachineError
 
 
 def choose_gl_backend() -> str:
@@ -22,7 +22,7 @@ def choose_gl_backend() -> str:
     elif ctypes.util.find_library("OSMesa"):
         chosen = "osmesa"
     else:
-        raise ConfigError(
+        raise MachineError(
             "video: no headless OpenGL found; install EGL (apt-get install libegl1 "
             "libgl1-mesa-dri) or OSMesa (apt-get install libosmesa6), or set MUJOCO_GL"
         )
@@ -32,12 +32,12 @@ def choose_gl_backend() -> str:
 
 
 def import_physics_for_rendering() -> None:
-    """Import MuJoCo under the chosen backend, or ConfigError: with a backend whose library is
+    """Import MuJoCo under the chosen backend, or MachineError: with a backend whose library is
     missing (MUJOCO_GL=osmesa without libOSMesa) `import mujoco` itself fails."""
     try:
         import mujoco  # noqa: F401
     except (ImportError, AttributeError, RuntimeError) as err:
-        raise ConfigError(
+        raise MachineError(
             f"video: MuJoCo cannot load with MUJOCO_GL={os.environ.get('MUJOCO_GL')} ({err}); "
             "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa "
             "(apt-get install libosmesa6)"

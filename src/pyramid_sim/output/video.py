@@ -18,7 +18,7 @@ import mujoco
 import numpy as np
 
 from ..config import VideoConfig
-from ..errors import ConfigError
+from ..errors import MachineError
 from .files import temporary_beside, write_atomic
 from .gl_backend import choose_gl_backend
 from .renderer import HeadlessRenderer
@@ -26,7 +26,7 @@ from .renderer import HeadlessRenderer
 
 def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> HeadlessRenderer:
     """A renderer with the asked shadows and MSAA, in a context of the headless backend chosen
-    for this process, whenever MuJoCo was imported (ConfigError when no context can be made).
+    for this process, whenever MuJoCo was imported (MachineError when no context can be made).
     The sample count is read from the model when the GL context is made; it is visual only, so
     physics is unchanged."""
     model.vis.quality.offsamples = config.antialias
@@ -41,7 +41,7 @@ def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> HeadlessRendere
             "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa (apt-get install "
             "libosmesa6)"
         )
-        raise ConfigError(f"video: no OpenGL context with MUJOCO_GL={backend} ({first}); {fix}") from None
+        raise MachineError(f"video: no OpenGL context with MUJOCO_GL={backend} ({first}); {fix}") from None
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
     return renderer
 

@@ -19,7 +19,7 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Iterator
 
-from ..errors import ConfigError, PyramidSimError
+from ..errors import MachineError, PyramidSimError
 from ..output.result import BuildResult
 from .grid import RunSpec
 from .store import KEY_COLUMNS, RESULT_FIELDS
@@ -197,11 +197,11 @@ def _collect(worker: _Worker, timeout: float) -> RunResult | None:
 # --- Ray backend -------------------------------------------------------------------------------
 
 def require_ray() -> None:
-    """ConfigError, before anything runs, when the ray extra is not installed."""
+    """MachineError, before anything runs, when the ray extra is not installed."""
     import importlib.util
 
     if importlib.util.find_spec("ray") is None:
-        raise ConfigError("backend: ray is not installed; accepted process, or ray after "
+        raise MachineError("backend: ray is not installed; accepted process, or ray after "
                           "pip install -e '.[ray]'")
 
 
