@@ -72,3 +72,18 @@ def test_a_bad_value_reads_the_same_through_the_api_as_on_the_command_line(kwarg
     line = refused(["plan", "--structure", "pyramid", *flags])
     assert line.strip() == f"pyramid-sim: error: {err.value}"
 
+
+
+def test_the_hand_speed_cap_is_the_robot_at_hands():
+    """Baxter's hand moves at most 0.3 m/s; the cap comes with the robot, so a config made for
+    Baxter and switched to the Panda moves at the Panda's speeds, and result.json records the
+    speeds moved by."""
+    from pyramid_sim.output.judge import inputs_of
+
+    switched = pyramid_sim.settings(config=pyramid_sim.SimConfig(robot="baxter"), robot="panda")
+    assert (switched.hand_motion.speed, switched.hand_motion.turn_rate) == (0.6, 1.5)
+    baxter = pyramid_sim.SimConfig(robot="baxter")
+    hand = baxter.hand_motion
+    assert (hand.speed, hand.slow_speed, hand.turn_rate) == (0.3, 0.15, 0.75)
+    recorded = inputs_of(pyramid_sim.plan("pyramid", layers=1, robot="baxter"), baxter)
+    assert recorded.settings["motion"]["speed"] == 0.3

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 from .errors import ConfigError
 from .params import check_range, check_section, default
@@ -127,17 +128,9 @@ class SimConfig:
     slip_limit_mm: float = 5.0  # a brick that slid further in the hand fails the build
 
     def __post_init__(self) -> None:
-        preset = robot(self.robot)  # refuses an unknown preset, naming those there are
+        robot(self.robot)  # refuses an unknown preset, naming those there are
         if self.schedule not in SCHEDULES:
             raise ConfigError(f"schedule: unknown {self.schedule!r}; accepted {', '.join(SCHEDULES)}")
-        m = self.motion
-        capped = replace(
-            m, speed=min(m.speed, preset.max_speed),
-            slow_speed=min(m.slow_speed, preset.max_slow_speed),
-            turn_rate=min(m.turn_rate, preset.max_turn_rate),
-        )
-        if capped != m:  # the robot's own limits on how fast its hand is moved
-            object.__setattr__(self, "motion", capped)
         check_range("timestep", self.timestep, 0.0005, 0.004)
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
@@ -151,6 +144,19 @@ class SimConfig:
                 f"control dt: {self.motion.control_dt} is not a whole number of timesteps "
                 f"({self.timestep})"
             )
+
+    @cached_property
+    def hand_motion(self) -> MotionConfig:
+        """The motion settings the robot's hand moves by: `motion` with each speed capped at
+        the robot's own limit (Baxter's wrist cannot turn its hand as fast as a Panda's). The
+        cap is taken from the robot at hand, so changing the robot changes it; result.json
+        records these."""
+        preset, m = robot(self.robot), self.motion
+        return replace(
+            m, speed=min(m.speed, preset.max_speed),
+            slow_speed=min(m.slow_speed, preset.max_slow_speed),
+            turn_rate=min(m.turn_rate, preset.max_turn_rate),
+        )
 
     @property
     def robot_spec(self) -> RobotDescription:

@@ -123,3 +123,11 @@ def test_an_ik_with_no_solution_stops_the_build_with_its_reason():
     assert not result.success and "finished" in result.failed_checks
     assert result.failure_reason.startswith("the IK found no joint motion within the arms' limits")
     assert result.sim_time_s < 0.1
+
+
+def test_a_baxter_hand_is_dispatched_at_its_own_speed():
+    config = SimConfig(robot="baxter")
+    parts = make_parts(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+    parts.dispatch.schedule(0.0)
+    speeds = [s.speed for a in c.ARMS for s in parts.dispatch.runners[a].steps if s.speed]
+    assert speeds and max(speeds) == 0.3

@@ -70,7 +70,7 @@ class ArmRunner:
         step = self.current
         if step is not None and step.kind is StepKind.MOVE:
             assert step.pose is not None
-            motion = self.config.motion
+            motion = self.config.hand_motion
             self._segment = plan_path(
                 self.pose, step.pose, step.speed, motion.turn_rate, step.transit
             )

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict
+from dataclasses import asdict, replace
 
 import numpy as np
 
@@ -155,7 +155,8 @@ def inputs_of(plan: Plan, config: SimConfig) -> BuildInputs:
     spec = plan.spec
     return BuildInputs(
         structure=spec.name, size=dict(spec.size), arms=plan.arms, seed=config.seed,
-        goals_file=spec.goals_source or None, settings=asdict(config),
+        goals_file=spec.goals_source or None,
+        settings=asdict(replace(config, motion=config.hand_motion)),  # the speeds moved by
     )
 
 

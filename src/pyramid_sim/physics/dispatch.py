@@ -92,7 +92,7 @@ class ArmDispatch:
             return False
         for a in c.ARMS:
             if not self._retracting[a] and not self.runners[a].busy:
-                self.runners[a].load(clear_steps(a, self.config.motion, self.robot))
+                self.runners[a].load(clear_steps(a, self.config.hand_motion, self.robot))
                 self._retracting[a] = True
         if all(self._retracting.values()) and not any(r.busy for r in self.runners.values()):
             if self._settle_until is None:
@@ -104,7 +104,7 @@ class ArmDispatch:
     def _assign(self, arm: str) -> None:
         """Give an idle arm the steps of its task in the current phase."""
         task = self.scheduler.task(arm)
-        motion = self.config.motion
+        motion = self.config.hand_motion
         grasp = {"grasp_height": self.robot.grasp_height,
                  "yaw_ref": self.robot.arms[arm].yaw_reference}
         if task.action in (Action.PICK, Action.PLACE, Action.BUILD):
@@ -159,6 +159,6 @@ class ArmDispatch:
         """The arm lost its brick: fingers open, off to clear, the brick back in its queue."""
         runner = self.runners[arm]
         runner.gap = runner.open_gap
-        runner.load(clear_steps(arm, self.config.motion, self.robot))
+        runner.load(clear_steps(arm, self.config.hand_motion, self.robot))
         self.scheduler.dropped(arm, brick)
         self.task_of[arm] = self.scheduler.task(arm)

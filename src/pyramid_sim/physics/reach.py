@@ -17,7 +17,7 @@ from .ik import DualArmIK
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
     """(arm, what, pose) of every move a build of `plan` makes."""
-    motion, robot = config.motion, config.robot_spec
+    motion, robot = config.hand_motion, config.robot_spec
     poses = []
     for arm in c.ARMS:
         poses.append((arm, "clear pose", clear_pose(arm, config.robot_spec)))
