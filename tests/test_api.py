@@ -87,3 +87,15 @@ def test_the_hand_speed_cap_is_the_robot_at_hands():
     assert (hand.speed, hand.slow_speed, hand.turn_rate) == (0.3, 0.15, 0.75)
     recorded = inputs_of(pyramid_sim.plan("pyramid", layers=1, robot="baxter"), baxter)
     assert recorded.settings["motion"]["speed"] == 0.3
+
+
+def test_a_slow_motion_the_loop_cannot_film_is_refused(refused):
+    """The loop films at most one frame a 2 ms physics step: 0.1 at 120 fps (a frame every
+    0.83 ms) is refused, by the API and the command line alike, before any physics."""
+    vc = pyramid_sim.VideoConfig(fps=120, speedup=0.1)
+    with pytest.raises(pyramid_sim.ConfigError, match="less than the 2 ms physics step") as err:
+        pyramid_sim.build("pyramid", layers=1, video="x/b.mp4", video_config=vc)
+    assert "accepted 0.24 to 100 at 120 fps" in str(err.value)
+    line = refused(["build", "--structure", "pyramid", "--layers", "1", "--video", "x/b.mp4",
+                    "--fps", "120", "--speedup", "0.1"])
+    assert line.strip() == f"pyramid-sim: error: {err.value}"

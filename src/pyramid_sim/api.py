@@ -15,7 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from .config import SimConfig, VideoConfig
+from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .core.structures import StructureSpec
 from .errors import ConfigError, MachineError
@@ -127,6 +127,8 @@ def build(
     from .physics.reach import prepare
 
     vc = video_config or VideoConfig()
+    if video is not None:
+        check_film(vc, config)
     return run_build(
         prepare(spec, config, arms), config,
         video=(vc, Path(video)) if video is not None else None,

@@ -207,3 +207,16 @@ class VideoConfig:
     def frame_dt(self) -> float:
         """Simulated seconds between two frames: one frame every speedup / fps."""
         return self.speedup / self.fps
+
+
+def check_film(video: VideoConfig, config: SimConfig) -> None:
+    """ConfigError unless the video's frames are at least a physics step apart: the loop
+    films at most one frame a step, so a slower motion could not be honoured."""
+    slowest = video.fps * config.timestep
+    if video.frame_dt < config.timestep - 1e-12:
+        raise ConfigError(
+            f"speedup: {video.speedup:g} at {video.fps} fps asks a frame every "
+            f"{video.frame_dt * 1000:.2g} ms of simulated time, less than the "
+            f"{config.timestep * 1000:g} ms physics step; accepted {slowest:.3g} to 100 at "
+            f"{video.fps} fps"
+        )

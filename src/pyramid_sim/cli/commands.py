@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
-from ..config import SimConfig
+from ..config import SimConfig, check_film
 from ..errors import ConfigError, MachineError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
@@ -51,6 +51,8 @@ def cmd_build(args: argparse.Namespace) -> int:
     """Simulate one build into its held folders; exit 0 iff result.json says it succeeded."""
     config = config_from_args(args)
     video_config = video_config_from_args(args)
+    if args.video is not None:
+        check_film(video_config, config)
     spec = spec_from_args(args, config)
     _check_outputs(args)
     if args.video is not None or args.snapshot is not None:
