@@ -169,12 +169,17 @@ def cmd_scene(args: argparse.Namespace) -> int:
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
+    if args.out.suffix.lower() == ".xml":
+        from ..output.scene_files import check_mesh_folder
+
+        check_mesh_folder(args.out)
     from ..physics.scene import write_scene
 
     with removed_if_failed([args.out.parent]):
-        model = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
+        model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
+    files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
     print(f"{model.nbody} bodies, {model.ngeom} geoms, {model.nu} actuators, "
-          f"{len(plan.bricks) + config.spare_bricks} bricks -> {args.out}")
+          f"{len(plan.bricks) + config.spare_bricks} bricks -> {', '.join(files)}")
     return 0
 
 
