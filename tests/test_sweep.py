@@ -241,3 +241,13 @@ def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, rai
     except Exception as err:
         assert type(err) is raised
     assert ("native retry warning" in capfd.readouterr().err) == shown
+
+
+def test_a_value_no_run_measured_is_n_a_never_a_dash(tmp_path):
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
+    rows = [{k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
+             for k, v in make_row(spec, 1.0, "dropped at the spot", success=False).items()}
+            for spec in config.runs()]
+    table = summary_table(rows, config)
+    cells = [c for line in table.splitlines()[1:] for c in line.split("  ") if c.strip()]
+    assert "n/a" in table and "-" not in [c.strip() for c in cells] and " - " not in table

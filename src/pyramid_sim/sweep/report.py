@@ -15,6 +15,7 @@ from .grid import Axis, SweepConfig, value_text
 from .store import row_key
 
 SLIP_SCALE_MM = 5.0
+MISSING = "n/a"  # a value no run measured (no brick carried to its release, say)
 
 
 @dataclass(frozen=True)
@@ -77,7 +78,7 @@ def summary_table(rows: list[dict[str, str]], config: SweepConfig) -> str:
 
 def _fmt(v: float) -> str:
     if math.isnan(v):
-        return "-"
+        return MISSING
     return "not placed" if math.isinf(v) else f"{v:.2f}"
 
 
