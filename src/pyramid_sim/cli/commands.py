@@ -147,12 +147,13 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         rows, ran = run_sweep(
             config, args.out, on_row=lambda result: bar.update(1), on_skip=bar.update
         )
-    print(report(rows, config, args.out))
+    table, plot = report(rows, config, args.out)
+    print(table)
     ok = sum(r["success"] == "true" for r in rows)
     broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
     print(
         f"{ok}/{len(rows)} builds succeeded ({ran} run now, {runs - ran} already in the CSV) -> "
-        f"{args.out / 'sweep.csv'}, {args.out / 'sweep.png'}"
+        f"{args.out / 'sweep.csv'}, {plot}"
     )
     if broken:
         print(f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
