@@ -157,7 +157,8 @@ def first_fault(poses: Sequence[Pose], brick: BrickConfig, rest_z: float) -> Fau
     for i, pose in enumerate(poses):
         for j in range(i):
             other = poses[j]
-            if abs(other.z - pose.z) >= brick.height or np.hypot(other.x - pose.x, other.y - pose.y) >= reach:
+            apart = np.hypot(other.x - pose.x, other.y - pose.y) >= reach
+            if apart or abs(other.z - pose.z) >= brick.height:
                 continue  # too far apart to touch: skip the exact test
             depth = overlap_depth(other, pose, brick)
             if depth > TOLERANCE:

@@ -7,11 +7,15 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..config import SimConfig
 from ..output.result import Tolerances
 from .grid import SweepConfig
 from .report import axis_values, number, plot_title, save_plot
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 UNPLACED_COLOUR = "#d7301f"
 
@@ -23,7 +27,7 @@ def _by_value(rows: list[dict[str, str]], name: str) -> dict[float, list[dict[st
     return groups
 
 
-def _spread(ax, groups: dict[float, list[dict[str, str]]], column: str, limit: float,
+def _spread(ax: "Axes", groups: dict[float, list[dict[str, str]]], column: str, limit: float,
             limit_text: str, unplaced: bool) -> None:
     """Each run's value as a point, the mean over the runs of a value as a line, their range as
     a band; with `unplaced`, a run with no value (a brick never placed) is a red cross along
@@ -60,7 +64,7 @@ def _spread(ax, groups: dict[float, list[dict[str, str]]], column: str, limit: f
               frameon=False)  # below the axes: never over a point
 
 
-def _success(ax, groups: dict[float, list[dict[str, str]]]) -> None:
+def _success(ax: "Axes", groups: dict[float, list[dict[str, str]]]) -> None:
     xs = sorted(groups)
     ok = [sum(r["success"] == "true" for r in groups[x]) for x in xs]
     rates = [k / len(groups[x]) for k, x in zip(ok, xs)]

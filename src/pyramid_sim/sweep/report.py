@@ -11,12 +11,16 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..output.files import write_atomic
 from ..output.result import Tolerances
 from ..params import param
 from .grid import Axis, SweepConfig, value_text
 from .store import row_key
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 SLIP_SCALE_MM = 5.0
 MAIN_PLOT = "sweep.png"
@@ -195,7 +199,7 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
     save_plot(fig, path, config, "heatmaps over " + " and ".join(a.label for a in (x, y) if a))
 
 
-def save_plot(fig, path: Path, config: SweepConfig, what: str) -> None:
+def save_plot(fig: "Figure", path: Path, config: SweepConfig, what: str) -> None:
     """Write the figure as a PNG, atomically, naming its group and what it shows in its text
     chunks (the group is how a later sweep tells its own plot from another's); closes it."""
     import matplotlib.pyplot as plt
