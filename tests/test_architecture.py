@@ -14,7 +14,8 @@ SRC = Path(pyramid_sim.__file__).resolve().parent
 PURE = ("pyramid_sim", "pyramid_sim.core", "pyramid_sim.params", "pyramid_sim.config",
         "pyramid_sim.api", "pyramid_sim.output.result", "pyramid_sim.output.judge",
         "pyramid_sim.output.files", "pyramid_sim.sweep.grid", "pyramid_sim.sweep.store",
-        "pyramid_sim.sweep.report", "pyramid_sim.cli")
+        "pyramid_sim.sweep.report", "pyramid_sim.sweep.lines", "pyramid_sim.output.scene_files",
+        "pyramid_sim.cli")
 
 
 def _modules(package: str) -> list[str]:

@@ -16,7 +16,7 @@ import pytest
 
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
-from pyramid_sim.sweep.report import summary_table, write_heatmaps
+from pyramid_sim.sweep.report import grid_rows, summary_table, write_heatmaps
 from pyramid_sim.sweep.runner import RunResult, make_row, run_processes
 from pyramid_sim.sweep.store import COLUMNS, SweepStore
 
@@ -248,3 +248,102 @@ def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, rai
     except Exception as err:
         assert type(err) is raised
     assert ("native retry warning" in capfd.readouterr().err) == shown
+
+
+def _swept(out: Path, config: SweepConfig, **results) -> list[dict]:
+    """The grid's runs appended to `out/sweep.csv` as finished builds; their rows as text."""
+    store = SweepStore(out / "sweep.csv")
+    for spec in config.runs():
+        store.append(make_row(spec, 1.0, None, **{"success": True, "worst_error_xy_mm": 1.5,
+                                                  "max_slip_mm": 0.8, **results}))
+    return grid_rows(store.rows, config)
+
+
+def _described(path: Path) -> str:
+    from PIL import Image
+
+    with Image.open(path) as image:
+        return image.text["Description"]
+
+
+def test_a_sweep_over_one_parameter_draws_lines_against_it_and_two_draw_heatmaps(tmp_path):
+    from pyramid_sim.sweep.run import report
+
+    one = SweepConfig(axes=(parse_axis("friction", "0.5,1,1.5"),), repeats=2)
+    table, path = report(_swept(tmp_path / "a", one), one, tmp_path / "a")
+    assert path == tmp_path / "a" / "sweep.png"
+    assert _described(path) == "pyramid-sim sweep: lines against brick friction"
+    assert table.count("2/2") == 3
+    two = SweepConfig(axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.5,1")))
+    _, path = report(_swept(tmp_path / "b", two), two, tmp_path / "b")
+    assert _described(path) == "pyramid-sim sweep: heatmaps over brick friction and brick mass (kg)"
+
+
+def test_another_group_in_the_same_folder_gets_its_own_plot(tmp_path):
+    """Another structure, schedule or robot (or other swept parameters) into one folder:
+    sweep.png stays the first sweep's, each other group's plot is named after it, and a
+    re-run of a group redraws its own plot."""
+    from pyramid_sim.core.structures import StructureSpec
+    from pyramid_sim.sweep.run import report
+
+    grid = (parse_axis("friction", "0.5,1"),)
+    first = SweepConfig(axes=grid)
+    _, path = report(_swept(tmp_path, first), first, tmp_path)
+    assert path.name == "sweep.png"
+    kept = path.read_bytes()
+    others = [
+        SweepConfig(axes=grid, structure=StructureSpec("pyramid", layers=2)),
+        SweepConfig(axes=grid, schedule="overlap"),
+        SweepConfig(axes=grid, robot="baxter"),
+        SweepConfig(axes=(parse_axis("grip_force", "10,20"),)),
+    ]
+    names = []
+    for config in others:
+        _, path = report(_swept(tmp_path, config), config, tmp_path)
+        names.append(path.name)
+    assert names == [
+        "sweep_panda_lockstep_pyramid_layers=2_both_friction_jitter=2.png",
+        "sweep_panda_overlap_pyramid-even_layers=4_both_friction_jitter=2.png",
+        "sweep_baxter_lockstep_pyramid-even_layers=4_both_friction_jitter=2.png",
+        "sweep_panda_lockstep_pyramid-even_layers=4_both_grip-force_jitter=2.png",
+    ]
+    assert (tmp_path / "sweep.png").read_bytes() == kept
+    assert len(list(tmp_path.glob("*.png"))) == 5
+    _, path = report(_swept(tmp_path, first), first, tmp_path)  # the first group again
+    assert path == tmp_path / "sweep.png"
+
+
+def test_a_groups_plot_draws_every_run_of_it_in_the_folder_and_no_other():
+    from pyramid_sim.core.structures import StructureSpec
+    from pyramid_sim.sweep.report import group_rows
+
+    coarse = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
+    fine = SweepConfig(axes=(parse_axis("friction", "0.7,0.8"),))
+    held = SweepConfig(axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.8")))
+    other = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), structure=StructureSpec("wall"))
+    rows = [{k: str(v) for k, v in make_row(spec, 1.0, None).items()}
+            for config in (coarse, fine, held, other) for spec in config.runs()]
+    assert sorted(r["friction"] for r in group_rows(rows, fine)) == ["0.5", "0.7", "0.8", "1.0"]
+    assert [r["brick_mass"] for r in group_rows(rows, held)] == ["0.8", "0.8"]
+
+
+def test_a_value_no_run_measured_is_n_a_never_a_dash(tmp_path):
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
+    rows = [{k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
+             for k, v in make_row(spec, 1.0, "dropped at the spot", success=False).items()}
+            for spec in config.runs()]
+    table = summary_table(rows, config)
+    cells = [c for line in table.splitlines()[1:] for c in line.split("  ") if c.strip()]
+    assert "n/a" in table and "-" not in [c.strip() for c in cells] and " - " not in table
+
+
+def test_a_sweep_png_not_drawn_by_a_sweep_is_left_alone(tmp_path):
+    """A file of that name without a group in it (drawn by hand, or by another program) is
+    never drawn over: the sweep's plot is named after its group."""
+    from pyramid_sim.sweep.run import report
+
+    (tmp_path / "sweep.png").write_bytes(b"not a plot of ours")
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
+    _, path = report(_swept(tmp_path, config), config, tmp_path)
+    assert path.name == "sweep_panda_lockstep_pyramid-even_layers=4_both_friction_jitter=2.png"
+    assert (tmp_path / "sweep.png").read_bytes() == b"not a plot of ours"

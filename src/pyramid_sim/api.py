@@ -122,13 +122,13 @@ def build(
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:
             raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
+    if video is not None:
+        check_film(video_config or VideoConfig(), config)
     _prepare_gl(render=video is not None or snapshot is not None)
     from .jobs.build import run_build
     from .physics.reach import prepare
 
     vc = video_config or VideoConfig()
-    if video is not None:
-        check_film(vc, config)
     return run_build(
         prepare(spec, config, arms), config,
         video=(vc, Path(video)) if video is not None else None,

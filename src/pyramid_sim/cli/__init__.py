@@ -44,7 +44,7 @@ def make_parser() -> a.Parser:
     a.add_physics_args(view)
     a.add_schedule_arg(view)
     a.add_sweep_args(sub.add_parser(
-        "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and sweep.png"
+        "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and a plot"
     ))
     scene = sub.add_parser("scene", help="write the compiled scene of a build (.mjb or .xml)")
     a.add_structure_args(scene)

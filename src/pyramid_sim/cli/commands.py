@@ -162,13 +162,13 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         rows, ran = run_sweep(  # the runs already in sweep.csv start the count
             config, args.out, on_row=lambda result: progress.advance(), on_skip=progress.start
         )
-        table = report(rows, config, args.out)
+        table, plot = report(rows, config, args.out)
     print(table)
     ok = sum(r["success"] == "true" for r in rows)
     broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
     print(
         f"{ok}/{len(rows)} builds succeeded ({ran} run now, {runs - ran} already in the CSV) -> "
-        f"{args.out / 'sweep.csv'}, {args.out / 'sweep.png'}"
+        f"{args.out / 'sweep.csv'}, {plot}"
     )
     if broken:
         print(f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
@@ -185,12 +185,17 @@ def cmd_scene(args: argparse.Namespace) -> int:
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
+    if args.out.suffix.lower() == ".xml":
+        from ..output.scene_files import check_mesh_folder
+
+        check_mesh_folder(args.out)
     from ..physics.scene import write_scene
 
     with removed_if_failed([args.out.parent]):
-        model = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
+        model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
+    files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
     print(f"{model.nbody} bodies, {model.ngeom} geoms, {model.nu} actuators, "
-          f"{len(plan.bricks) + config.spare_bricks} bricks -> {args.out}")
+          f"{len(plan.bricks) + config.spare_bricks} bricks -> {', '.join(files)}")
     return 0
 
 

@@ -1,5 +1,6 @@
 """Place goals from a file (the Brick Manager's fixed list): JSON or CSV of x, y, z, yaw per
-brick, in build order. Pure: every problem is a ConfigError naming the file and the row.
+brick, in build order. Pure: every problem is a ConfigError naming the file and the row, among
+them goals that overlap, float or would tip (core/support.py).
 
 JSON: `{"goals": [{"x": .., "y": .., "z": .., "yaw": ..}, ...]}` or the list alone.
 CSV: a header line `x,y,z,yaw`, then one brick a line. Metres and radians, world frame, z the
@@ -18,17 +19,18 @@ from ..config import BrickConfig
 from ..errors import ConfigError
 from .poses import Pose
 from .structures import BrickTarget
+from .support import TOLERANCE, first_fault
 
 COLUMNS = ("x", "y", "z", "yaw")
 REQUIRED = ("x", "y", "z")
 MAX_GOALS = 200
-LAYER_SLACK = 0.25  # of a brick height: a goal this near a course height is on that course
 
 
 def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTarget, ...]:
     """The goals of `path` as targets, each in a course counted from `table_z` (the resting
     centre height of a brick on the table). Refuses unknown columns, non-numbers, goals below
-    the table or between courses, and bricks that overlap, naming the row (1 = first goal)."""
+    the table or between courses, and bricks that overlap, float or would tip, naming the row
+    (1 = first goal): a build of them would fail without saying why."""
     name = path.name
     try:
         text = path.read_text()
@@ -40,10 +42,11 @@ def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTar
     if len(rows) > MAX_GOALS:
         raise ConfigError(f"goals: {name} holds {len(rows)} goals; accepted 1 to {MAX_GOALS}")
     targets = [_target(i, row, name, brick, table_z) for i, row in enumerate(rows, start=1)]
-    for i, a in enumerate(targets):
-        for j in range(i):
-            if bricks_overlap(targets[j].pose, a.pose, brick):
-                raise ConfigError(f"goals: {name} rows {j + 1} and {i + 1}: the bricks overlap")
+    # Every plan lays the courses bottom first, keeping the file's order within a course.
+    order = sorted(range(len(targets)), key=lambda i: targets[i].layer)
+    fault = first_fault([targets[i].pose for i in order], brick, table_z)
+    if fault is not None:
+        raise ConfigError(f"goals: {name} {fault.describe(lambda k: f'row {order[k] + 1}')}")
     return tuple(targets)
 
 
@@ -95,32 +98,12 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
         if not math.isfinite(value):
             raise ConfigError(f"{where}: {key} {raw!r} is not a finite number")
         values[key] = value
-    height = (values["z"] - table_z) / brick.height
-    layer = round(height)
-    if layer < 0 or abs(height - layer) > LAYER_SLACK:
+    layer = round((values["z"] - table_z) / brick.height)
+    if layer < 0 or abs(values["z"] - table_z - layer * brick.height) > TOLERANCE:
         raise ConfigError(
             f"{where}: z {values['z']:g} is not a resting height; accepted {table_z:g} + k x "
-            f"{brick.height:g} (k = 0, 1, ...)"
+            f"{brick.height:g} (k = 0, 1, ...) within {TOLERANCE * 1000:g} mm"
         )
     pose = Pose(values["x"], values["y"], table_z + layer * brick.height, values["yaw"])
     return BrickTarget(pose, layer)
 
-
-def bricks_overlap(a: Pose, b: Pose, brick: BrickConfig) -> bool:
-    """Whether two bricks in the same course overlap in plan (separating axes of two
-    rectangles); bricks of different courses never do."""
-    if abs(a.z - b.z) >= brick.height * (1 - LAYER_SLACK):
-        return False
-    half = (brick.length / 2, brick.width / 2)
-    centre = (b.x - a.x, b.y - a.y)
-    axes = [(math.cos(a.yaw), math.sin(a.yaw)), (-math.sin(a.yaw), math.cos(a.yaw)),
-            (math.cos(b.yaw), math.sin(b.yaw)), (-math.sin(b.yaw), math.cos(b.yaw))]
-    for ax in axes:
-        distance = abs(centre[0] * ax[0] + centre[1] * ax[1])
-        reach = 0.0
-        for box in (axes[0:2], axes[2:4]):
-            reach += half[0] * abs(box[0][0] * ax[0] + box[0][1] * ax[1])
-            reach += half[1] * abs(box[1][0] * ax[0] + box[1][1] * ax[1])
-        if distance >= reach - 1e-9:
-            return False
-    return True

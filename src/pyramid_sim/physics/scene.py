@@ -88,19 +88,20 @@ def build_scene(config: SimConfig, n_bricks: int) -> Scene:
     return Scene(model=model, n_bricks=n_bricks)
 
 
-def write_scene(config: SimConfig, n_bricks: int, path: Path) -> mujoco.MjModel:
+def write_scene(config: SimConfig, n_bricks: int, path: Path) -> tuple[mujoco.MjModel, list[Path]]:
     """The compiled scene of a build, written atomically: `.mjb` (MuJoCo's binary model,
-    self-contained) or `.xml` (MJCF, mesh paths absolute). Returns the model."""
+    self-contained) or `.xml` (MJCF) with the meshes it uses copied into `x_meshes/` beside it
+    and named relatively, so the two open anywhere without this package. Returns the model and
+    what was written."""
     from ..output.files import write_atomic
+    from ..output.scene_files import write_portable_xml
 
     spec = build_spec(config, n_bricks)
     model = spec.compile()
     if path.suffix.lower() == ".mjb":
         write_atomic(path, lambda tmp: mujoco.mj_saveModel(model, str(tmp), None))
-    else:
-        xml = spec.to_xml()
-        write_atomic(path, lambda tmp: tmp.write_text(xml))
-    return model
+        return model, [path]
+    return model, [path, write_portable_xml(path, spec.to_xml())]
 
 
 def _add_contact_sensors(spec: mujoco.MjSpec, robot: RobotDescription) -> None:

@@ -1,4 +1,6 @@
-"""What a sweep found: per-point statistics, the summary table and the heatmaps (matplotlib).
+"""What a sweep found: per-point statistics, the summary table, which plot a sweep draws and
+under which name, and the heatmaps of a two-parameter sweep (matplotlib; lines.py draws a
+one-parameter sweep).
 
 Reads only CSV rows (text), so a report can be redrawn from `sweep.csv` alone.
 """
@@ -6,15 +8,24 @@ Reads only CSV rows (text), so a report can be redrawn from `sweep.csv` alone.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..output.files import write_atomic
 from ..output.result import Tolerances
+from ..params import param
 from .grid import Axis, SweepConfig, value_text
 from .store import row_key
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 SLIP_SCALE_MM = 5.0
+MAIN_PLOT = "sweep.png"
+PNG_KEY = "pyramid_sim sweep"  # the PNG text chunk naming the group a plot draws
+MISSING = "n/a"  # a value no run measured (no brick carried to its release, say)
 
 
 @dataclass(frozen=True)
@@ -29,13 +40,14 @@ class CellStats:
         return self.succeeded / self.runs if self.runs else math.nan
 
 
-def _number(text: str) -> float:
+def number(text: str | None) -> float:
+    """A CSV cell as a number; NaN for an empty one (a value the run did not measure)."""
     return float(text) if text not in ("", None) else math.nan
 
 
 def _stats(rows: list[dict[str, str]]) -> CellStats:
-    errors = [_number(r["worst_error_xy_mm"]) for r in rows]
-    slips = [s for s in (_number(r["max_slip_mm"]) for r in rows) if not math.isnan(s)]
+    errors = [number(r["worst_error_xy_mm"]) for r in rows]
+    slips = [s for s in (number(r["max_slip_mm"]) for r in rows) if not math.isnan(s)]
     return CellStats(
         runs=len(rows),
         succeeded=sum(r["success"] == "true" for r in rows),
@@ -48,6 +60,59 @@ def grid_rows(rows: list[dict[str, str]], config: SweepConfig) -> list[dict[str,
     """The rows of this sweep's grid (a folder may hold rows of other grids too)."""
     keys = {spec.key() for spec in config.runs()}
     return [r for r in rows if row_key(r) in keys]
+
+
+def group_rows(rows: list[dict[str, str]], config: SweepConfig) -> list[dict[str, str]]:
+    """The rows of the folder in this sweep's group, which its plot draws: the same robot,
+    schedule, structure, size, arms, spawn jitter and held parameters, any value of the swept
+    ones and any seed (so two grids of one group share a plot, each point once)."""
+    full = config.full_axes()
+    fixed = {
+        "robot": config.robot, "schedule": config.schedule, "structure": config.structure.name,
+        "size": config.structure.size_text(), "arms": config.arms,
+        "spawn_jitter_mm": value_text(config.spawn_jitter_mm),
+        **{a.name: value_text(a.values[0]) for a in full if len(a.values) == 1},
+    }
+    return [r for r in rows if all(r[k] == v for k, v in fixed.items())]
+
+
+def plot_label(config: SweepConfig) -> str:
+    """The group a sweep belongs to, as a file name: robot, schedule, structure, size, arms,
+    the swept parameters (or `point`), the held ones not at their defaults, spawn jitter."""
+    full = config.full_axes()
+    swept = "+".join(a.name for a in full if len(a.values) > 1) or "point"
+    held = [f"{a.name}={value_text(a.values[0])}" for a in full
+            if len(a.values) == 1 and a.values[0] != param(a.name).default]
+    parts = [config.robot, config.schedule, config.structure.name,
+             config.structure.size_text(), config.arms, swept, *held,
+             f"jitter={config.spawn_jitter_mm:g}"]
+    return "_".join(re.sub(r"[^A-Za-z0-9.=+-]+", "-", p) for p in parts)
+
+
+def png_group(path: Path) -> str | None:
+    """The group a plot of ours was drawn for (its PNG text), None for any other file."""
+    try:
+        from PIL import Image
+
+        with Image.open(path) as image:
+            return image.text.get(PNG_KEY)  # type: ignore[attr-defined]
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
+def plot_path(out: Path, config: SweepConfig) -> Path:
+    """Where this sweep's plot goes: `sweep.png` when the folder has none yet or that one is
+    this group's; else `sweep_<group>.png`, so another group's plot is never drawn over."""
+    main = out / MAIN_PLOT
+    label = plot_label(config)
+    if not main.exists() or png_group(main) == label:
+        return main
+    return out / f"sweep_{label}.png"
+
+
+def axis_values(rows: list[dict[str, str]], axis: Axis) -> tuple[float, ...]:
+    """The axis's values in the grid and in the rows drawn, in order."""
+    return tuple(sorted({*axis.values, *(float(r[axis.name]) for r in rows)}))
 
 
 def cells(
@@ -77,7 +142,7 @@ def summary_table(rows: list[dict[str, str]], config: SweepConfig) -> str:
 
 def _fmt(v: float) -> str:
     if math.isnan(v):
-        return "-"
+        return MISSING
     return "not placed" if math.isinf(v) else f"{v:.2f}"
 
 
@@ -94,8 +159,8 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
 
     x, y = config.plot_axes()
     stats = cells(rows, x, y)
-    xs = [value_text(v) for v in x.values]
-    ys = [value_text(v) for v in y.values] if y else [None]
+    xs = [value_text(v) for v in axis_values(rows, x)]
+    ys = [value_text(v) for v in axis_values(rows, y)] if y else [None]
     panels = [
         ("success rate", lambda s: s.rate, "RdYlGn", 0.0, 1.0,
          lambda s: f"{s.succeeded}/{s.runs}"),
@@ -130,23 +195,40 @@ def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) 
         ax.set_title(title)
         _draw_coulomb_limit(ax, config, x, y)
         fig.colorbar(image, ax=ax, extend="neither" if title == "success rate" else "max")
-    fig.suptitle(_title(config, x, y))
+    fig.suptitle(plot_title(config, x, y, rows))
+    save_plot(fig, path, config, "heatmaps over " + " and ".join(a.label for a in (x, y) if a))
+
+
+def save_plot(fig: "Figure", path: Path, config: SweepConfig, what: str) -> None:
+    """Write the figure as a PNG, atomically, naming its group and what it shows in its text
+    chunks (the group is how a later sweep tells its own plot from another's); closes it."""
+    import matplotlib.pyplot as plt
+
+    metadata = {PNG_KEY: plot_label(config), "Description": f"pyramid-sim sweep: {what}"}
     try:
-        write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", dpi=110))
+        write_atomic(path, lambda tmp: fig.savefig(tmp, format="png", dpi=110, metadata=metadata))
     finally:
         plt.close(fig)
 
 
-def _title(config: SweepConfig, x: Axis, y: Axis | None) -> str:
-    """What the map shows: the structure, the runs, and the parameters held or folded."""
+def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[dict[str, str]]) -> str:
+    """What the plot shows: the group (robot, schedule, structure), the runs a point, and the
+    parameters held or folded."""
     fixed = ", ".join(
         f"{a.label} {value_text(a.values[0])}" for a in config.full_axes() if len(a.values) == 1
         and a.name not in (x.name, y.name if y else None)
     )
     folded = [a.label for a in config.full_axes() if len(a.values) > 1 and a not in (x, y)]
+    per_point: dict[tuple[str, ...], int] = {}
+    for r in rows:
+        point = tuple(r[a.name] for a in config.full_axes())
+        per_point[point] = per_point.get(point, 0) + 1
+    low, high = min(per_point.values(), default=0), max(per_point.values(), default=0)
+    runs = f"{low}" if low == high else f"{low} to {high}"
     return (
-        f"{config.structure.name} ({config.structure.size_text()}, arms {config.arms}), "
-        f"{config.repeats} run(s) a point, spawn jitter {config.spawn_jitter_mm:g} mm; {fixed}"
+        f"{config.robot}, {config.schedule}: {config.structure.name} "
+        f"({config.structure.size_text()}, arms {config.arms}), {runs} run(s) a point, "
+        f"spawn jitter {config.spawn_jitter_mm:g} mm" + (f"; {fixed}" if fixed else "")
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )
 

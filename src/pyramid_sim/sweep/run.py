@@ -1,5 +1,6 @@
-"""A parameter sweep from grid to map: skip the runs already in `sweep.csv`, run the rest on the
-chosen backend, append each row as it lands, then draw `sweep.png` and print the summary."""
+"""A parameter sweep from grid to plot: skip the runs already in `sweep.csv`, run the rest on
+the chosen backend, append each row as it lands, then draw the group's plot (`sweep.png`, or
+`sweep_<group>.png` beside another group's) and print the summary."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from pathlib import Path
 from typing import Callable
 
 from .grid import SweepConfig, value_text
-from .report import grid_rows, summary_table, write_heatmaps
+from .report import grid_rows, group_rows, plot_path, summary_table, write_heatmaps
 from .runner import RunResult, run_processes, run_ray
 from .store import SweepStore
 
@@ -53,7 +54,16 @@ def run_sweep(
     return grid_rows(store.rows, config), len(todo)
 
 
-def report(rows: list[dict[str, str]], config: SweepConfig, out: Path) -> str:
-    """Draw `out/sweep.png`; returns the summary table."""
-    write_heatmaps(rows, config, out / "sweep.png")
-    return summary_table(rows, config)
+def report(rows: list[dict[str, str]], config: SweepConfig, out: Path) -> tuple[str, Path]:
+    """Draw the plot of this sweep's group: every run of the group in `out/sweep.csv`, against
+    the swept parameter (lines) or over the first two (heatmaps). Returns the summary table of
+    `rows` (this grid's) and the plot's path."""
+    from .lines import write_lines
+
+    path = plot_path(out, config)
+    drawn = group_rows(SweepStore(out / "sweep.csv").rows, config) or rows
+    if sum(len(a.values) > 1 for a in config.full_axes()) <= 1:
+        write_lines(drawn, config, path)
+    else:
+        write_heatmaps(drawn, config, path)
+    return summary_table(rows, config), path
