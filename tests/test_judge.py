@@ -68,6 +68,15 @@ def test_the_slip_limit_is_a_setting():
         replace(CONFIG, slip_limit_mm=0.0)
 
 
+@pytest.mark.parametrize("limit", [30.0, 31.0, float("nan")])
+def test_a_slip_limit_no_slip_can_reach_is_refused(limit):
+    """A brick 30 mm out of its grip has been dropped, so no slip of 30 mm or more is ever
+    measured: such a limit could never fail a build."""
+    with pytest.raises(pyramid_sim.ConfigError, match=r"accepted \(0, 30\): a brick 30 mm"):
+        replace(CONFIG, slip_limit_mm=limit)
+    assert "slip" in judge(_measured(slip_mm={0: 29.0}), replace(CONFIG, slip_limit_mm=28.5)).failed_checks
+
+
 def test_docs_name_every_field_a_result_writes():
     from dataclasses import fields
     from pathlib import Path

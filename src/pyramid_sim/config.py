@@ -16,6 +16,8 @@ from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
 SCHEDULES = ("lockstep", "overlap")
+DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
+DROP_MM = DROP_DISTANCE * 1000.0  # so a slip is measured only short of it
 
 
 def check_count(name: str, value: int, low: int, high: int) -> None:
@@ -137,7 +139,13 @@ class SimConfig:
         check_range("stall time", self.stall_time, 1.0, 36000.0)
         check_count("seed", self.seed, 0, 2**32 - 1)
         check_count("spare bricks", self.spare_bricks, 0, 20)
-        check_range("slip limit (mm)", self.slip_limit_mm, 0.0, 30.0, low_open=True)
+        v = self.slip_limit_mm
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0.0 < v < DROP_MM:
+            # a slip that far is a drop, so no slip is ever measured past it
+            raise ConfigError(
+                f"slip limit (mm): {v!r} is out of range; accepted (0, {DROP_MM:g}): a brick "
+                f"{DROP_MM:g} mm out of its grip has been dropped"
+            )
         steps = self.motion.control_dt / self.timestep
         if abs(steps - round(steps)) > 1e-9:
             raise ConfigError(

@@ -12,6 +12,7 @@ from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.core.zone import Zone
 from pyramid_sim.physics import names as c
+from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.physics.custody import BrickCustody
 from pyramid_sim.physics.dispatch import ArmDispatch
 from pyramid_sim.physics.handles import SceneHandles
@@ -123,6 +124,7 @@ def test_an_ik_with_no_solution_stops_the_build_with_its_reason():
     assert not result.success and "finished" in result.failed_checks
     assert result.failure_reason.startswith("the IK found no joint motion within the arms' limits")
     assert result.sim_time_s < 0.1
+    assert result.closest_arm_approach_mm is None  # stopped before the arms were ever measured
 
 
 def test_a_baxter_hand_is_dispatched_at_its_own_speed():
@@ -131,3 +133,15 @@ def test_a_baxter_hand_is_dispatched_at_its_own_speed():
     parts.dispatch.schedule(0.0)
     speeds = [s.speed for a in c.ARMS for s in parts.dispatch.runners[a].steps if s.speed]
     assert speeds and max(speeds) == 0.3
+
+
+def test_the_closest_approach_is_the_true_distance_from_the_first_look():
+    """Before any look there is no closest approach; the first measures every pair exactly."""
+    parts = make_parts(PLAN, CONFIG)
+    assert parts.clearance.closest == float("inf") and parts.clearance.closest_time is None
+    parts.clearance.update()
+    model, data, robot, fromto = parts.model, parts.data, CONFIG.robot_spec, np.zeros(6)
+    left, right = (arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies
+                             + robot.arms[a].finger_bodies) for a in c.ARMS)
+    true = min(mujoco.mj_geomDistance(model, data, a, b, 10.0, fromto) for a in left for b in right)
+    assert parts.clearance.closest == pytest.approx(true, abs=1e-9)

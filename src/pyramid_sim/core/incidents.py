@@ -11,7 +11,6 @@ import numpy as np
 
 from ..config import SimConfig
 
-DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 KNOCK_DISTANCE = 0.02  # m: a placed brick this far from where it was let go was knocked off
 MAX_DROPS_PER_BRICK = 3  # then the build stops and says why
 GRAVITY = 9.81

@@ -192,7 +192,10 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         recoveries=sum(any(b.index == d.brick and b.placed for b in bricks) for d in measured.drops),
         drop_events=tuple(measured.drops),
         knocked_off=tuple(measured.knocks),
-        closest_arm_approach_mm=round(measured.closest_arm_m * 1000.0, 1),
+        closest_arm_approach_mm=(  # None when the build stopped before the first look
+            round(measured.closest_arm_m * 1000.0, 1)
+            if math.isfinite(measured.closest_arm_m) else None
+        ),
         closest_arm_approach_t_s=(
             round(measured.closest_arm_time, 3) if measured.closest_arm_time is not None else None
         ),

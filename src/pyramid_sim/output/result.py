@@ -125,7 +125,7 @@ class BuildResult:
     recoveries: int
     drop_events: tuple[Drop, ...]
     knocked_off: tuple[Knock, ...]
-    closest_arm_approach_mm: float
+    closest_arm_approach_mm: float | None  # None if the arms were never measured
     closest_arm_approach_t_s: float | None
     arm_arm_contacts: int
     arm_body_contacts: int  # an arm against its own robot's body (torso, head)

@@ -9,13 +9,15 @@ exactly, so after the first step almost none are.
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import numpy as np
 
 from ..robots import ArmDescription, RobotDescription
 from . import names as c
 
-FAR = 1.0  # m: approaches farther than this are not measured exactly
+FAR = 10.0  # m, the farthest distance measured exactly: beyond any two arms of the scene
 
 
 def subtree(model: mujoco.MjModel, root: str) -> set[int]:
@@ -61,7 +63,7 @@ class ArmClearance:
         self._g1, self._g2 = pairs[:, 0], pairs[:, 1]
         self._rsum = model.geom_rbound[self._g1] + model.geom_rbound[self._g2]
         self._fromto = np.zeros(6)
-        self.closest = FAR  # m
+        self.closest = math.inf  # m; the first update measures every pair
         self.closest_time: float | None = None
 
     def update(self) -> None:
@@ -70,7 +72,7 @@ class ArmClearance:
         bound = np.sqrt(np.einsum("ij,ij->i", diff, diff)) - self._rsum
         for i in np.flatnonzero(bound < self.closest):
             dist = mujoco.mj_geomDistance(
-                self.model, self.data, int(self._g1[i]), int(self._g2[i]), self.closest,
+                self.model, self.data, int(self._g1[i]), int(self._g2[i]), min(self.closest, FAR),
                 self._fromto,
             )
             if dist < self.closest:

@@ -9,9 +9,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from ..config import SimConfig
+from ..config import DROP_DISTANCE, SimConfig
 from ..core.incidents import (
-    DROP_DISTANCE,
     MAX_DROPS_PER_BRICK,
     Drop,
     Knock,
