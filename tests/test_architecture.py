@@ -91,3 +91,21 @@ def test_no_panda_name_is_spelled_outside_the_panda_preset():
                 if "panda" in node.value.lower() and id(node) not in docstrings:
                     spelled.append(f"{rel}: {node.value[:40]!r}")
     assert spelled == []
+
+
+def test_every_package_has_an_init_whose_all_resolves():
+    """Each sub-package says what it holds: an __init__.py with a docstring and an __all__
+    whose every name is one of its modules or an attribute it defines."""
+    for init in SRC.rglob("__init__.py"):
+        tree = ast.parse(init.read_text())
+        assert ast.get_docstring(tree), init
+        names = next(ast.literal_eval(n.value) for n in tree.body if isinstance(n, ast.Assign)
+                     and any(getattr(t, "id", "") == "__all__" for t in n.targets))
+        here = init.parent
+        defined = {a.asname or a.name for n in ast.walk(tree)
+                   if isinstance(n, (ast.Import, ast.ImportFrom)) for a in n.names}
+        for name in names:
+            assert (here / f"{name}.py").exists() or (here / name).is_dir() or name in defined, (
+                f"{init.relative_to(SRC)}: {name}")
+    for folder in (p for p in SRC.rglob("*") if p.is_dir() and list(p.glob("*.py"))):
+        assert (folder / "__init__.py").exists(), folder.relative_to(SRC)

@@ -8,3 +8,5 @@ apart differ by up to 2x in absolute speed.
     targets.py   what each figure is held to, and the printed table
     timers.py    timers wrapped round the calls the IK cannot do without
 """
+
+__all__ = ["figures", "targets", "timers"]

@@ -20,3 +20,6 @@ def add_robot(spec: mujoco.MjSpec, config: SimConfig) -> RobotDescription:
     robot = config.robot_spec
     BUILDERS[robot.name](spec, config, robot)
     return robot
+
+
+__all__ = ["BUILDERS", "Builder", "add_robot"]
