@@ -104,6 +104,10 @@ def test_every_package_has_an_init_whose_all_resolves():
         here = init.parent
         defined = {a.asname or a.name for n in ast.walk(tree)
                    if isinstance(n, (ast.Import, ast.ImportFrom)) for a in n.names}
+        defined |= {t.id for n in tree.body if isinstance(n, (ast.Assign, ast.AnnAssign))
+                    for t in (n.targets if isinstance(n, ast.Assign) else [n.target])
+                    if isinstance(t, ast.Name)}
+        defined |= {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
         for name in names:
             assert (here / f"{name}.py").exists() or (here / name).is_dir() or name in defined, (
                 f"{init.relative_to(SRC)}: {name}")
