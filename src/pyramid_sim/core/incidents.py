@@ -107,6 +107,6 @@ class KnockWatch:
             if self.slots[i] in self.knocked:
                 continue
             self.knocked.add(self.slots[i])
-            pos = tuple(float(v) for v in xpos[self.bodies[i]])
-            knocks.append(Knock(self.bricks[i], self.slots[i], time, pos, moved[i] * 1000.0))
+            x, y, z = (float(v) for v in xpos[self.bodies[i]])
+            knocks.append(Knock(self.bricks[i], self.slots[i], time, (x, y, z), moved[i] * 1000.0))
         return knocks

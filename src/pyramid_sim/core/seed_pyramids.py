@@ -37,6 +37,7 @@ def create_coordinates(layer: int) -> tuple[list[list[float]], list[float]]:
     x_structure = round(xs + xb + sc * 0.05, 4)
     for j in range(layer):
         z_structure = zs + (layer - j - 1) * zb + 0.03
+        total_list: list[float] | list[int]
         if (j + 1) % 2 == 0:
             init_list = [i + 0.5 for i in range(int((j + 1) / 2))]
             rev_list = [-(i + 0.5) for i in range(int((j + 1) / 2))]

@@ -21,7 +21,7 @@ class Zone:
     y_min: float
     y_max: float
 
-    def contains(self, point: Sequence[float]) -> bool:
+    def contains(self, point: Sequence[float] | np.ndarray) -> bool:
         return self.x_min <= point[0] <= self.x_max and self.y_min <= point[1] <= self.y_max
 
     def any_inside(self, points: Iterable[np.ndarray]) -> bool:

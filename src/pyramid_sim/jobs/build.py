@@ -46,10 +46,10 @@ def run_build(
             still.close()
         raise
     result = judge(measured, config)
-    if recorder is not None:
+    if recorder is not None and video is not None:
         recorder.finish()
-        vc = video[0]
-        result = replace(result, video=VideoInfo(str(video[1]), recorder.frames, vc.fps, vc.speedup))
+        vc, path = video
+        result = replace(result, video=VideoInfo(str(path), recorder.frames, vc.fps, vc.speedup))
     if still is not None and snapshot is not None:
         from ..output.video import write_still
 

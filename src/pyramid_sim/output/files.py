@@ -66,7 +66,7 @@ def atomic_dir(path: Path) -> Iterator[Path]:
             shutil.rmtree(aside, ignore_errors=True)
 
 
-def write_atomic(path: Path, write: Callable[[Path], None]) -> None:
+def write_atomic(path: Path, write: Callable[[Path], object]) -> None:
     """Call `write(tmp)` and move the finished file to `path`."""
     with atomic_path(path) as tmp:
         write(tmp)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, replace
+from typing import Any
 
 import numpy as np
 
@@ -34,7 +35,7 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
         pose = b.target.pose
         target = Target(_round_all((pose.x, pose.y, pose.z), 6), round(pose.yaw, 6))  # type: ignore[arg-type]
         slip = measured.slip_mm.get(b.index)
-        common = dict(
+        common: dict[str, Any] = dict(
             index=b.index, arm=b.arm, layer=b.target.layer, target=target,
             dropped=b.index in dropped, drops=sum(d.brick == b.index for d in measured.drops),
             slip_mm=round(slip, 3) if slip is not None else None,

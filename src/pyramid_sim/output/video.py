@@ -68,8 +68,8 @@ def signals_held() -> Iterator[None]:
     finally:
         for s in held:
             signal.signal(s, before[s])
-    for s in dict.fromkeys(caught):
-        signal.raise_signal(s)  # now, to whatever handled it before
+    for signum in dict.fromkeys(caught):
+        signal.raise_signal(signum)  # now, to whatever handled it before
 
 
 class Recorder:

@@ -131,7 +131,7 @@ def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any
         "ik_solve_ms_median": float(np.median(ms)),
         "ik_solve_ms_p99": float(np.percentile(ms, 99)),
         "sim_s_per_brick": result.sim_s_per_brick,
-        "bricks_per_hour_sim": 3600.0 / result.sim_s_per_brick,
+        "bricks_per_hour_sim": 3600.0 / result.sim_s_per_brick if result.sim_s_per_brick else None,
         "max_slip_mm": result.max_slip_mm,
         "max_joint_speed_ratio": result.max_joint_speed_ratio,
         "max_joint_torque_ratio": result.max_joint_torque_ratio,

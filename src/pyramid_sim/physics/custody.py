@@ -124,8 +124,8 @@ class BrickCustody:
         picked again; one that lands elsewhere is replaced by a spare (`feed_spot`)."""
         d = self.data
         on_spot = self.spawner.rests_on_spot(d, carry.slot)
-        pos = tuple(float(v) for v in d.xpos[self.handles.brick_body[carry.slot]])
-        drop = Drop(carry.index, arm, carry.slot, float(d.time), pos, step, on_spot)
+        x, y, z = (float(v) for v in d.xpos[self.handles.brick_body[carry.slot]])
+        drop = Drop(carry.index, arm, carry.slot, float(d.time), (x, y, z), step, on_spot)
         self.drops.append(drop)
         self.carry[arm] = None
         self.slot_of.pop(carry.index, None)

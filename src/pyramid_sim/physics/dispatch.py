@@ -38,6 +38,7 @@ class ArmDispatch:
         self.robot = config.robot_spec
         queues = (plan.arm_order("left"), plan.arm_order("right"))
         self._reach_seen: dict[tuple[Task, Task], bool] = {}
+        self.scheduler: OverlapScheduler | LockstepScheduler
         if config.schedule == "overlap":
             self.scheduler = OverlapScheduler(*queues, conflict=self._reach_across)
         else:
@@ -120,6 +121,7 @@ class ArmDispatch:
                 then = self._yaw_after(arm, task.brick) if quick else None
                 steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
+                assert steps[0].pose is not None  # a pick or a place begins with a move
                 steps.insert(0, standby_step(
                     arm, list(self.zones.values()), self.plan.spawn.x, steps[0].pose, motion,
                     STANDBY_CLEARANCE,

@@ -52,8 +52,8 @@ class SceneHandles:
         return len(self.brick_body)
 
     def place_brick(
-        self, data: mujoco.MjData, slot: int, position: Sequence[float],
-        quat: Sequence[float] | None = None,
+        self, data: mujoco.MjData, slot: int, position: Sequence[float] | np.ndarray,
+        quat: Sequence[float] | np.ndarray | None = None,
     ) -> None:
         """Put the brick in `slot` at `position` (and `quat`), at rest."""
         q, v = self.brick_qpos[slot], self.brick_dofs[slot]

@@ -120,6 +120,7 @@ class BrakingCollisionLimit(mink.Limit):
     ) -> mink.limits.Constraint:
         """mink's rows with each bound reshaped to the braking speed over the gap left."""
         constraint = self.limit.compute_qp_inequalities(configuration, 1.0)
+        assert constraint.G is not None and constraint.h is not None  # mink: None if inactive
         gap = np.maximum(constraint.h, 0.0)
         return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
 
@@ -132,5 +133,6 @@ class BrakingCollisionLimit(mink.Limit):
         if not self.gaps.may_be_within(configuration.data, self.limit.collision_detection_distance):
             return self._no_rows
         constraint = self.compute_qp_inequalities(configuration, dt)
+        assert constraint.G is not None and constraint.h is not None
         keep = np.isfinite(constraint.h)
         return constraint.G[keep], constraint.h[keep]

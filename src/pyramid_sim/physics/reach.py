@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
@@ -26,11 +27,12 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
         label = f"brick {b.index}"
         if goals:
             label += f" (goals row {goals.index(b.target) + 1})"
-        grasp = {"grasp_height": robot.grasp_height, "yaw_ref": robot.arms[b.arm].yaw_reference}
-        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, **grasp):
+        grasp, yaw_ref = robot.grasp_height, robot.arms[b.arm].yaw_reference
+        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, grasp_height=grasp,
+                               yaw_ref=yaw_ref):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} pick {step.name}", step.pose))
-        for step in place_steps(b.target.pose, motion, **grasp):
+        for step in place_steps(b.target.pose, motion, grasp_height=grasp, yaw_ref=yaw_ref):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} {step.name}", step.pose))
     return poses
@@ -94,7 +96,8 @@ def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
         return replace(spec, width=value, layers=min(spec.layers or 1, value))
     if spec.name == "corner-wall":  # two and a half courses, as the seed's 15 bricks of 6
         return replace(spec, width=value, bricks=3 * (value + 1) - (value + 1) // 2)
-    return replace(spec, **{knob: value})
+    sizes: dict[str, Any] = {knob: value}
+    return replace(spec, **sizes)
 
 
 def held_fixed(spec: StructureSpec) -> str:

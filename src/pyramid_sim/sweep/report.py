@@ -11,7 +11,7 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..output.files import write_atomic
 from ..output.result import Tolerances
@@ -95,7 +95,7 @@ def png_group(path: Path) -> str | None:
         from PIL import Image
 
         with Image.open(path) as image:
-            return image.text.get(PNG_KEY)  # type: ignore[attr-defined]
+            return image.text.get(PNG_KEY)
     except (OSError, ValueError, AttributeError):
         return None
 
@@ -236,9 +236,9 @@ def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[dict[str
 GRAVITY = 9.81
 
 
-def coulomb_mass_limit(grip_force: float, pad_friction: float) -> float:
+def coulomb_mass_limit(grip_force: Any, pad_friction: float) -> Any:
     """The heaviest brick (kg) two pads pressing with `grip_force` each can hold at rest:
-    2 mu F / g, Coulomb's law."""
+    2 mu F / g, Coulomb's law (element-wise for an array of forces)."""
     return 2.0 * pad_friction * grip_force / GRAVITY
 
 
