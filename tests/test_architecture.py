@@ -76,7 +76,8 @@ def test_no_panda_name_is_spelled_outside_the_panda_preset():
     """Only the preset (robots/panda.py, physics/robots/panda.py) and the registries that list
     it name the Panda; everything else reads the robot's description."""
     allowed = {"robots/panda.py", "physics/robots/panda.py", "robots/__init__.py",
-               "physics/robots/__init__.py", "robots/baxter.py"}  # the last compares itself
+               "physics/robots/__init__.py", "robots/baxter.py",  # the last compares itself
+               "choices.py"}  # the names a setting can take
     spelled = []
     for path in SRC.rglob("*.py"):
         rel = path.relative_to(SRC).as_posix()
@@ -113,3 +114,12 @@ def test_every_package_has_an_init_whose_all_resolves():
                 f"{init.relative_to(SRC)}: {name}")
     for folder in (p for p in SRC.rglob("*") if p.is_dir() and list(p.glob("*.py"))):
         assert (folder / "__init__.py").exists(), folder.relative_to(SRC)
+
+
+def test_the_literal_choices_are_the_ones_there_are():
+    """The Literal types of choices.py are what the presets, schedules and cameras offer."""
+    from pyramid_sim.choices import ROBOT_NAMES
+    from pyramid_sim.robots import PRESETS
+
+    assert set(ROBOT_NAMES) == set(PRESETS)
+    assert all(PRESETS[name].name == name for name in ROBOT_NAMES)

@@ -170,8 +170,7 @@ def _commands() -> dict:
 def test_help_shows_every_default_and_the_choices():
     import argparse
 
-    from pyramid_sim.config import CAMERAS
-    from pyramid_sim.core.plan import ARM_CHOICES
+    from pyramid_sim.choices import ARM_CHOICES, CAMERAS
 
     no_default = {"--video", "--snapshot", "--goals"}  # nothing is written, or read, unless given
     missing = []

@@ -15,6 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from .choices import ArmChoice
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .core.structures import StructureSpec
@@ -91,7 +92,7 @@ def _resolve(
 
 
 def plan(
-    name: str = "pyramid-even", *, arms: str = "both", config: SimConfig | None = None,
+    name: str = "pyramid-even", *, arms: ArmChoice = "both", config: SimConfig | None = None,
     **options: Any,
 ) -> Plan:
     """The build plan: every brick's target, arm and order, and the spawn pose. `options` are
@@ -104,7 +105,7 @@ def plan(
 def build(
     name: str = "pyramid-even",
     *,
-    arms: str = "both",
+    arms: ArmChoice = "both",
     config: SimConfig | None = None,
     video: str | Path | None = None,
     snapshot: str | Path | None = None,

@@ -10,12 +10,12 @@ import math
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
+from .choices import CAMERAS, SCHEDULES, Camera, RobotName, Schedule
 from .errors import ConfigError
 from .params import check_range, check_section, default
 from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
-SCHEDULES = ("lockstep", "overlap")
 DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 DROP_MM = DROP_DISTANCE * 1000.0  # so a slip is measured only short of it
 
@@ -115,8 +115,8 @@ class MotionConfig:
 class SimConfig:
     """Everything a build needs beyond the structure itself."""
 
-    robot: str = DEFAULT_ROBOT  # a preset of robots/
-    schedule: str = "lockstep"  # the seed's four phases, or "overlap" (core/overlap.py)
+    robot: RobotName = DEFAULT_ROBOT  # a preset of robots/
+    schedule: Schedule = "lockstep"  # the seed's four phases, or "overlap" (core/overlap.py)
     brick: BrickConfig = field(default_factory=BrickConfig)
     gripper: GripperConfig = field(default_factory=GripperConfig)
     layout: LayoutConfig = field(default_factory=LayoutConfig)
@@ -177,7 +177,6 @@ class SimConfig:
         return int(round(self.motion.control_dt / self.timestep))
 
 
-CAMERAS = ("overview", "front", "top")
 
 
 @dataclass(frozen=True)
@@ -191,7 +190,7 @@ class VideoConfig:
     fps: int = 30
     width: int = 640
     height: int = 480
-    camera: str = "overview"
+    camera: Camera = "overview"
     shadows: bool = False
     antialias: int = 0
     speedup: float = 1.0  # simulated seconds shown per second of video

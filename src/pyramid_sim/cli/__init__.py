@@ -12,7 +12,7 @@ import threading
 from pathlib import Path
 from typing import NoReturn, Sequence
 
-from ..core.plan import ARM_CHOICES
+from ..choices import ARM_CHOICES
 from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a

@@ -12,8 +12,8 @@ import os
 from pathlib import Path
 from typing import Callable, NoReturn, Sequence
 
-from ..config import CAMERAS, SCHEDULES, SimConfig, VideoConfig
-from ..core.plan import ARM_CHOICES
+from ..choices import ARM_CHOICES, CAMERAS, SCHEDULES
+from ..config import SimConfig, VideoConfig
 from ..core.structures import (
     MAX_BRICKS,
     MAX_COURSE,

@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from ..choices import ARM_CHOICES, ArmChoice
 from ..config import SimConfig, check_film
 from ..errors import ConfigError, MachineError
 from ..output.files import check_writable_dir, removed_if_failed
@@ -117,9 +118,9 @@ def cmd_view(args: argparse.Namespace) -> int:
         raise MachineError("view: no display (DISPLAY is not set); use build --video instead")
     import mujoco.viewer
 
-    from ..physics.reach import prepare
     from ..physics.hooks import BuildHooks
     from ..physics.loop import BuildLoop
+    from ..physics.reach import prepare
 
     config = config_from_args(args)
     loop = BuildLoop.of(prepare(spec_from_args(args, config), config, args.arms), config)
@@ -203,7 +204,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
     from ..core.structures import SIZE_KNOB, StructureSpec
     from ..physics.reach import ReachChecker, held_fixed
 
-    arm_sets = ("both", "left", "right") if args.arms == "all" else (args.arms,)
+    arm_sets: tuple[ArmChoice, ...] = ARM_CHOICES if args.arms == "all" else (args.arms,)
     checker = ReachChecker(SimConfig(robot=args.robot))
     arm_heads = [f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets]
     rows = [["structure", "grows", "other options", *arm_heads]]

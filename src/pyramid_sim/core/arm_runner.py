@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..choices import Arm
 from ..config import SimConfig
 from .poses import Pose
 from .primitives import Step, StepKind
@@ -16,7 +17,7 @@ from .trajectory import Path, plan_path
 
 @dataclass
 class ArmRunner:
-    arm: str
+    arm: Arm
     config: SimConfig
     pose: Pose  # commanded tool-centre pose
     gap: float  # commanded finger gap (m)

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
+from ..choices import Arm
 from .structures import BrickTarget
 
 
@@ -13,8 +14,12 @@ class Assignment:
     """One brick of the build order: its index in that order, its arm and its target."""
 
     index: int
-    arm: str
+    arm: Arm
     target: BrickTarget
+
+
+# the left arm takes the largest y of a layer, the right the smallest
+ARM_PICKS: tuple[tuple[Arm, Callable[..., BrickTarget]], ...] = (("left", max), ("right", min))
 
 
 def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
@@ -25,7 +30,7 @@ def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
     remaining = list(targets)
     order: list[Assignment] = []
     while remaining:
-        for arm, pick in (("left", max), ("right", min)):
+        for arm, pick in ARM_PICKS:
             if not remaining:
                 break
             lowest = min(t.layer for t in remaining)
@@ -36,7 +41,7 @@ def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
     return tuple(order)
 
 
-def single_arm(targets: Sequence[BrickTarget], arm: str) -> tuple[Assignment, ...]:
+def single_arm(targets: Sequence[BrickTarget], arm: Arm) -> tuple[Assignment, ...]:
     """Every brick to one arm, in the structure's own order, lowest course first (a goal list's
     order is kept within each course: the generators and a sensible list are bottom-up)."""
     ordered = sorted(targets, key=lambda t: t.layer)  # stable: keeps the order within a course

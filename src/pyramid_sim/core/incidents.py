@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from ..choices import Arm
 from ..config import SimConfig
 
 KNOCK_DISTANCE = 0.02  # m: a placed brick this far from where it was let go was knocked off
@@ -22,7 +23,7 @@ class Drop:
     which step, and whether it lay on the spawn spot as spawned when the drop was seen."""
 
     brick: int
-    arm: str
+    arm: Arm
     slot: int
     time: float
     position: tuple[float, float, float]

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from typing import Callable, Sequence
 
+from ..choices import Arm
 from .scheduler import Action, Task, other
 
 ZONE_OF = {Action.PICK: "spot", Action.PLACE: "structure"}
@@ -44,7 +45,7 @@ class OverlapScheduler:
     def finished(self) -> bool:
         return all(t.action is Action.IDLE for t in self._tasks.values())
 
-    def task(self, arm: str) -> Task:
+    def task(self, arm: Arm) -> Task:
         return self._tasks[arm]
 
     def holder(self, zone: str) -> str | None:
@@ -52,11 +53,11 @@ class OverlapScheduler:
         held = self._holder[zone]
         return held.arm if held is not None else None
 
-    def zone_for(self, arm: str) -> str:
+    def zone_for(self, arm: Arm) -> str:
         """The zone the arm's task needs (for messages)."""
         return ZONE_OF.get(self.task(arm).action, "spot")
 
-    def _next(self, arm: str) -> None:
+    def _next(self, arm: Arm) -> None:
         queue = self._queues[arm]
         if not queue:  # done: out of the way to its clear pose first, then idle
             done_clearing = self._tasks.get(arm, Task(arm, Action.CLEAR)).action is Action.CLEAR
@@ -72,7 +73,7 @@ class OverlapScheduler:
             heads = [b for b in heads if b not in self._picked]
         return min(heads) if heads else None
 
-    def may_enter(self, arm: str) -> bool:
+    def may_enter(self, arm: Arm) -> bool:
         """Whether the arm may move into the zone its task needs: its brick's turn there, the
         other arm neither in it nor holding it. Granted, the zone is the arm's until it has
         finished the task and is out."""
@@ -91,7 +92,7 @@ class OverlapScheduler:
         self._holder[zone] = task
         return True
 
-    def report_zone(self, arm: str, outside: bool, zone: str) -> None:
+    def report_zone(self, arm: Arm, outside: bool, zone: str) -> None:
         """What the physics loop saw of the arm and `zone`."""
         if not outside:
             self._inside[zone].add(arm)
@@ -101,7 +102,7 @@ class OverlapScheduler:
         if held is not None and held.arm == arm and held != self.task(arm):
             self._holder[zone] = None
 
-    def complete(self, arm: str) -> None:
+    def complete(self, arm: Arm) -> None:
         """The arm finished its task: a pick is followed by the place of the same brick."""
         task = self.task(arm)
         if task.action is Action.PICK:
@@ -111,7 +112,7 @@ class OverlapScheduler:
             self._queues[arm].pop(0)
         self._next(arm)
 
-    def dropped(self, arm: str, brick: int) -> None:
+    def dropped(self, arm: Arm, brick: int) -> None:
         """The arm lost `brick`: it clears, then picks the brick again (it stays first in the
         arm's queue)."""
         self._picked.discard(brick)

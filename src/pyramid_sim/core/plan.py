@@ -5,19 +5,18 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from ..choices import ARM_CHOICES, Arm, ArmChoice
 from ..config import SimConfig
 from ..errors import ConfigError
 from .assignment import Assignment, arrange, single_arm
 from .poses import Pose
 from .structures import StructureSpec
 
-ARM_CHOICES = ("both", "left", "right")
-
 
 @dataclass(frozen=True)
 class Plan:
     spec: StructureSpec
-    arms: str  # both, left or right
+    arms: ArmChoice  # both arms (the seed's split) or one alone
     spawn: Pose
     bricks: tuple[Assignment, ...]
 
@@ -25,7 +24,7 @@ class Plan:
     def structure(self) -> str:
         return self.spec.name
 
-    def arm_order(self, arm: str) -> list[int]:
+    def arm_order(self, arm: Arm) -> list[int]:
         """Build-order indices of the bricks this arm places."""
         return [b.index for b in self.bricks if b.arm == arm]
 
@@ -53,7 +52,7 @@ def _xyz(pose: Pose) -> list[float]:
     return [round(pose.x, 6), round(pose.y, 6), round(pose.z, 6)]
 
 
-def make_plan(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
+def make_plan(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") -> Plan:
     """Targets of the structure, assigned to the arms by the seed's rule; with one arm, that
     arm places every brick in the structure's own order (the Brick Manager's single Panda)."""
     if arms not in ARM_CHOICES:

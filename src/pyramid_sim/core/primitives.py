@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Sequence
 
+from ..choices import Arm
 from ..config import MotionConfig
 from ..robots import RobotDescription
 from .poses import Pose, grasp_yaw
@@ -108,14 +109,14 @@ def lift_speed(distance: float, motion: MotionConfig) -> float:
     return max(motion.slow_speed, bounded_speed(distance, motion.speed, LIFT_ACCELERATION))
 
 
-def clear_pose(arm: str, robot: RobotDescription) -> Pose:
+def clear_pose(arm: Arm, robot: RobotDescription) -> Pose:
     """The arm's outer collision-clear pose, out to its own side."""
     x, y, z = robot.clear_pose
     return Pose(x, y if arm == "left" else -y, z, robot.arms[arm].yaw_reference)
 
 
 def standby_step(
-    arm: str, zones: Sequence[Zone], x: float, at: Pose, motion: MotionConfig, clearance: float,
+    arm: Arm, zones: Sequence[Zone], x: float, at: Pose, motion: MotionConfig, clearance: float,
     bricks: Sequence[Pose] = (), reach: float = 0.0,
 ) -> Step:
     """A move to wait at `x`, just outside every zone across that line on the arm's own side,
@@ -132,6 +133,6 @@ def standby_step(
     return Step("standby", StepKind.MOVE, Pose(x, y, z, at.yaw), motion.speed, transit=True)
 
 
-def clear_steps(arm: str, motion: MotionConfig, robot: RobotDescription) -> list[Step]:
+def clear_steps(arm: Arm, motion: MotionConfig, robot: RobotDescription) -> list[Step]:
     return [Step("clear", StepKind.MOVE, clear_pose(arm, robot), motion.speed)]
 

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Sequence
 
+from ..choices import Arm
+
 
 class Action(str, Enum):
     PICK = "pick"
@@ -29,13 +31,13 @@ class Action(str, Enum):
 class Task:
     """What one arm does in one phase; `brick` is the build-order index for pick and place."""
 
-    arm: str
+    arm: Arm
     action: Action
     brick: int | None = None
 
 
 # (working arm, its action) per phase; the other arm clears.
-PHASES: tuple[tuple[str, Action], ...] = (
+PHASES: tuple[tuple[Arm, Action], ...] = (
     ("left", Action.PICK),
     ("right", Action.PICK),
     ("left", Action.PLACE),
@@ -43,7 +45,7 @@ PHASES: tuple[tuple[str, Action], ...] = (
 )
 
 
-def other(arm: str) -> str:
+def other(arm: Arm) -> Arm:
     return "right" if arm == "left" else "left"
 
 
@@ -73,11 +75,11 @@ class LockstepScheduler:
     def finished(self) -> bool:
         return not self._tasks
 
-    def task(self, arm: str) -> Task:
+    def task(self, arm: Arm) -> Task:
         """The arm's task in the current phase (IDLE when it has none)."""
         return self._tasks.get(arm, Task(arm, Action.IDLE))
 
-    def may_enter(self, arm: str) -> bool:
+    def may_enter(self, arm: Arm) -> bool:
         """Whether the arm may move into the shared zone now."""
         if self.finished:
             return False
@@ -85,18 +87,18 @@ class LockstepScheduler:
             return False
         return other(arm) in self._outside
 
-    def zone_for(self, arm: str) -> str:
+    def zone_for(self, arm: Arm) -> str:
         """The zone the arm's task needs (for messages): there is one."""
         return "shared"
 
-    def report_zone(self, arm: str, outside: bool, zone: str = "shared") -> None:
+    def report_zone(self, arm: Arm, outside: bool, zone: str = "shared") -> None:
         """What the physics loop saw: is every tracked point of `arm` outside the shared zone?"""
         if outside:
             self._outside.add(arm)
         else:
             self._outside.discard(arm)
 
-    def complete(self, arm: str) -> None:
+    def complete(self, arm: Arm) -> None:
         """The arm finished its task; once both have, the next phase starts."""
         task = self.task(arm)
         if task.action is Action.PICK:
@@ -107,7 +109,7 @@ class LockstepScheduler:
         if self._done >= set(self._tasks):
             self._advance()
 
-    def dropped(self, arm: str, brick: int) -> None:
+    def dropped(self, arm: Arm, brick: int) -> None:
         """The arm lost `brick` between grip and release: the brick goes back to the front of
         the arm's queue (its next pick fetches a new one) and the arm's task in this phase
         becomes a clear, so the phase still ends at the barrier."""
@@ -133,7 +135,7 @@ class LockstepScheduler:
             return
         self._tasks = {}
 
-    def _next_brick(self, arm: str, action: Action) -> int | None:
+    def _next_brick(self, arm: Arm, action: Action) -> int | None:
         if action is Action.PICK:
             if self._holding[arm] is not None or not self._queues[arm]:
                 return None

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from ..choices import ARMS
 from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
@@ -127,7 +128,6 @@ def failure_reason(
     return "; ".join(problems)
 
 
-ARMS = ("left", "right")  # the order in which the monitor counts arm joints: left first
 
 
 def joint_name(config: SimConfig, joint: int | None) -> str:

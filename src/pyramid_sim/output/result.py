@@ -16,6 +16,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
+from ..choices import Arm
 from ..core.incidents import Drop, Knock
 from .files import write_atomic
 
@@ -54,7 +55,7 @@ class BrickResult:
     the structure for this place (never picked, or its state not finite)."""
 
     index: int
-    arm: str
+    arm: Arm
     layer: int
     target: Target
     dropped: bool

@@ -14,13 +14,14 @@ from typing import Any, Callable
 import mujoco
 import numpy as np
 
+from ..choices import RobotName
 from ..config import SimConfig, VideoConfig, check_count
 from ..core.structures import StructureSpec
-from ..output.judge import judge
 from ..jobs.build import run_build
-from ..physics.reach import prepare
+from ..output.judge import judge
 from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
+from ..physics.reach import prepare
 from ..robots import DEFAULT_ROBOT
 from ..sweep.grid import RunSpec
 from ..sweep.runner import RunResult, run_processes
@@ -35,7 +36,7 @@ class BenchConfig:
     """What to measure: the `pyramid-even` size, frames rendered per setting, builds per worker."""
 
     layers: int = 4
-    robot: str = DEFAULT_ROBOT
+    robot: RobotName = DEFAULT_ROBOT
     frames: int = 60
     sweep_builds: int = 2  # per worker
     sweep_rounds: int = 2  # 1-worker and 2-worker sweeps, alternated; the best of each counts
@@ -192,7 +193,7 @@ def video_figures(loop: BuildLoop, frames: int) -> dict[str, float]:
 
 
 def sweep_rate(
-    spec: StructureSpec, workers: int, builds: int, robot: str = DEFAULT_ROBOT
+    spec: StructureSpec, workers: int, builds: int, robot: RobotName = DEFAULT_ROBOT
 ) -> tuple[float, int]:
     """Builds per hour of wall time running `builds` builds on `workers` worker processes, as
     `pyramid-sim sweep` does (process start and model compile included); and how many succeeded."""

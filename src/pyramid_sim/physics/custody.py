@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from ..choices import Arm
 from ..config import DROP_DISTANCE, SimConfig
 from ..core.incidents import (
     MAX_DROPS_PER_BRICK,
@@ -58,11 +59,11 @@ class BrickCustody:
         self.untouched = set(range(handles.n_bricks))
         self.idle_motion = 0.0  # m, the furthest a brick moved before an arm reached for it
 
-    def tcp(self, arm: str) -> tuple[np.ndarray, np.ndarray]:
+    def tcp(self, arm: Arm) -> tuple[np.ndarray, np.ndarray]:
         site = self.handles.tcp_site[arm]
         return self.data.site_xpos[site], self.data.site_xmat[site].reshape(3, 3)
 
-    def brick_in_tcp(self, arm: str, slot: int) -> np.ndarray:
+    def brick_in_tcp(self, arm: Arm, slot: int) -> np.ndarray:
         p, r = self.tcp(arm)
         return r.T @ (self.data.xpos[self.handles.brick_body[slot]] - p)
 
@@ -82,7 +83,7 @@ class BrickCustody:
         for slot in self.untouched:
             self._note_idle(slot)
 
-    def gripped(self, arm: str, brick: int) -> None:
+    def gripped(self, arm: Arm, brick: int) -> None:
         """The arm closed on the brick lying on the spot, for build-order place `brick`."""
         slot = self.spawner.current
         assert slot is not None
@@ -119,7 +120,7 @@ class BrickCustody:
                     dropped.append(drop)
         return dropped
 
-    def _drop(self, arm: str, carry: Carry, step: str) -> Drop:
+    def _drop(self, arm: Arm, carry: Carry, step: str) -> Drop:
         """Record a brick that left the hand. One that comes to rest on the spawn spot is
         picked again; one that lands elsewhere is replaced by a spare (`feed_spot`)."""
         d = self.data

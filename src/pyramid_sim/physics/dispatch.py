@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Callable
 
+from ..choices import Arm
 from ..config import SimConfig
 from ..core.arm_runner import ArmRunner
 from ..core.overlap import OverlapScheduler
@@ -50,11 +51,11 @@ class ArmDispatch:
         for a in c.ARMS:
             self.runners[a].load([])
 
-    def step_of(self, arm: str) -> Step | None:
+    def step_of(self, arm: Arm) -> Step | None:
         """The primitive step the arm is in (None when idle)."""
         return self.runners[arm].current
 
-    def held(self, arm: str) -> bool:
+    def held(self, arm: Arm) -> bool:
         """Whether the arm must wait before its first move into the shared zone: until the
         other arm is out, and for a pick until a brick lies on the spawn spot."""
         step = self.runners[arm].current
@@ -80,7 +81,7 @@ class ArmDispatch:
 
         return segment_gap(*reach(a), *reach(b))
 
-    def _may_go(self, arm: str, step: Step) -> bool:
+    def _may_go(self, arm: Arm, step: Step) -> bool:
         """Whether the arm may go straight on into the zone `step` enters."""
         return self.scheduler.may_enter(arm) and (not step.needs_brick or self.spawner.brick_ready())
 
@@ -102,7 +103,7 @@ class ArmDispatch:
                 return True
         return False
 
-    def _assign(self, arm: str) -> None:
+    def _assign(self, arm: Arm) -> None:
         """Give an idle arm the steps of its task in the current phase."""
         task = self.scheduler.task(arm)
         motion = self.config.hand_motion
@@ -133,7 +134,7 @@ class ArmDispatch:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))
         self.task_of[arm] = task
 
-    def _yaw_after(self, arm: str, brick: int) -> float:
+    def _yaw_after(self, arm: Arm, brick: int) -> float:
         """The hand's yaw for the arm's move after placing `brick`: the next pick's, or its
         clear pose's after its last brick."""
         if any(b > brick for b in self.plan.arm_order(arm)):
@@ -141,7 +142,7 @@ class ArmDispatch:
         return clear_pose(arm, self.robot).yaw
 
     def advance(
-        self, arm: str, ik_error: float, on_done: Callable[[str, Step, Task | None], None]
+        self, arm: Arm, ik_error: float, on_done: Callable[[Arm, Step, Task | None], None]
     ) -> Pose:
         """One control tick of the arm (unless held); `on_done` hears a finished step before
         the scheduler hears of a finished task. Returns the pose the arm is commanded to."""
@@ -157,7 +158,7 @@ class ArmDispatch:
                     self.scheduler.complete(arm)
         return runner.pose
 
-    def dropped(self, arm: str, brick: int) -> None:
+    def dropped(self, arm: Arm, brick: int) -> None:
         """The arm lost its brick: fingers open, off to clear, the brick back in its queue."""
         runner = self.runners[arm]
         runner.gap = runner.open_gap

@@ -15,6 +15,7 @@ import mink
 import mujoco
 import numpy as np
 
+from ..choices import Arm, RobotName
 from ..config import SimConfig
 from ..core.poses import Pose, tcp_quaternion, yaw_of
 from ..errors import UnreachableError
@@ -40,7 +41,7 @@ def arms_model(config: SimConfig) -> mujoco.MjModel:
 
 
 @lru_cache(maxsize=4)
-def _arms_model(robot: str, timestep: float) -> mujoco.MjModel:
+def _arms_model(robot: RobotName, timestep: float) -> mujoco.MjModel:
     return build_spec(SimConfig(robot=robot, timestep=timestep), 0, with_bricks=False).compile()
 
 
@@ -126,7 +127,7 @@ class DualArmIK:
             pairs += [(arm, body) for arm in guarded]
         return pairs
 
-    def home(self, arm: str) -> np.ndarray:
+    def home(self, arm: Arm) -> np.ndarray:
         return np.array(self.robot.arms[arm].home)
 
     def reset_home(self) -> None:
@@ -149,17 +150,17 @@ class DualArmIK:
                 self.robot.arms[arm].tcp_site, "site"))
             self._targets.pop(arm, None)
 
-    def arm_q(self, arm: str) -> np.ndarray:
+    def arm_q(self, arm: Arm) -> np.ndarray:
         return self.configuration.q[self.qadr[arm]].copy()
 
-    def tcp_pose(self, arm: str) -> Pose:
+    def tcp_pose(self, arm: Arm) -> Pose:
         """Where the IK's model has the arm's tool centre now."""
         data = self.configuration.data
         site = data.site(self.robot.arms[arm].tcp_site)
         x, y, z = site.xpos
         return Pose(float(x), float(y), float(z), yaw_of(site.xmat.reshape(3, 3)))
 
-    def set_target(self, arm: str, pose: Pose) -> None:
+    def set_target(self, arm: Arm, pose: Pose) -> None:
         """Aim the arm's frame task at `pose` (called every control step; a repeat is free)."""
         if self._targets.get(arm) == pose:
             return
@@ -213,12 +214,12 @@ class DualArmIK:
             return clipped / self.dt
         return step / self.dt
 
-    def error(self, arm: str) -> tuple[float, float]:
+    def error(self, arm: Arm) -> tuple[float, float]:
         """Position (m) and orientation (rad) error of the arm's frame task."""
         err = self.tasks[arm].compute_error(self.configuration)
         return math.sqrt(err[:3] @ err[:3]), math.sqrt(err[3:] @ err[3:])
 
-    def solve(self, arm: str, pose: Pose, max_steps: int = 1500, tol: float = 1e-3) -> np.ndarray:
+    def solve(self, arm: Arm, pose: Pose, max_steps: int = 1500, tol: float = 1e-3) -> np.ndarray:
         """Converge on `pose` for one arm by repeated steps; raise UnreachableError if it stalls."""
         self.set_target(arm, pose)
         pos_err = float("inf")

@@ -9,6 +9,7 @@ import mink
 import mujoco
 import numpy as np
 
+from ..choices import Arm
 from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
@@ -49,7 +50,7 @@ class BuildLoop:
         return cls(make_parts(plan, config))
 
     # --- what the loop reads ----------------------------------------------------------------
-    def step_of(self, arm: str) -> Step | None:
+    def step_of(self, arm: Arm) -> Step | None:
         """The primitive step the arm is in (None when idle)."""
         return self.dispatch.step_of(arm)
 
@@ -65,7 +66,7 @@ class BuildLoop:
         for a in c.ARMS:
             self.ik.set_target(a, self.dispatch.advance(a, self.ik.error(a)[0], self._on_step_done))
 
-    def _on_step_done(self, arm: str, step: Step, task: Task | None) -> None:
+    def _on_step_done(self, arm: Arm, step: Step, task: Task | None) -> None:
         self.last_progress = self.data.time
         kind = step.kind
         picking = task is not None and task.action in (Action.PICK, Action.BUILD)

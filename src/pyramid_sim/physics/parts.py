@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from ..choices import Schedule
 from ..config import SimConfig
 from ..core.plan import Plan
 from ..core.primitives import clear_pose
@@ -50,7 +51,7 @@ class BuildParts:
     monitor: StepMonitor
 
 
-def schedule_zones(schedule: str, plan: Plan, config: SimConfig) -> dict[str, Zone]:
+def schedule_zones(schedule: Schedule, plan: Plan, config: SimConfig) -> dict[str, Zone]:
     """The zones the schedule hands out: one shared zone for the lockstep, the spot's and the
     structure's for the overlap schedule."""
     targets = [b.target.pose for b in plan.bricks]

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any
 
+from ..choices import Arm, ArmChoice
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
 from ..core.poses import Pose
@@ -16,10 +17,10 @@ from . import names as c
 from .ik import DualArmIK
 
 
-def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[str, str, Pose]]:
+def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
     """(arm, what, pose) of every move a build of `plan` makes."""
     motion, robot = config.hand_motion, config.robot_spec
-    poses = []
+    poses: list[tuple[Arm, str, Pose]] = []
     for arm in c.ARMS:
         poses.append((arm, "clear pose", clear_pose(arm, config.robot_spec)))
     goals = plan.spec.goals
@@ -48,7 +49,7 @@ class ReachChecker:
         self.ik.reset_home()
         self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.robot_spec)) for a in c.ARMS}
 
-    def why_not(self, arm: str, pose: Pose) -> str | None:
+    def why_not(self, arm: Arm, pose: Pose) -> str | None:
         """None if the arm reaches the pose from home, else why not. The other arm waits at its
         clear pose, as in a build, where the IK keeps the arms apart."""
         key = (arm, pose)
@@ -69,7 +70,7 @@ class ReachChecker:
             if reason is not None:
                 raise UnreachableError(f"{what}: {reason}")
 
-    def largest(self, spec: StructureSpec, arms: str = "both", below: int | None = None) -> int:
+    def largest(self, spec: StructureSpec, arms: ArmChoice = "both", below: int | None = None) -> int:
         """The largest value (under `below`) of the structure's size knob (SIZE_KNOB: layers,
         width or towers; the other options as in `spec`) whose every pose is reachable."""
         knob = SIZE_KNOB[spec.name]
@@ -137,7 +138,7 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
         ) from None
 
 
-def prepare(spec: StructureSpec, config: SimConfig, arms: str = "both") -> Plan:
+def prepare(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") -> Plan:
     """The plan, with every pose checked by IK: raises ConfigError before any physics."""
     plan = make_plan(spec, config, arms)
     require_reachable(plan, config)

@@ -7,6 +7,7 @@ from typing import Mapping, Protocol
 
 import mujoco
 
+from ..choices import Arm
 from ..core.zone import Zone
 from . import names as c
 from .handles import SceneHandles
@@ -15,7 +16,7 @@ from .handles import SceneHandles
 class ZoneListener(Protocol):
     """What the zone watch tells: the schedulers' `report_zone`."""
 
-    def report_zone(self, arm: str, outside: bool, zone: str) -> None: ...
+    def report_zone(self, arm: Arm, outside: bool, zone: str) -> None: ...
 
 
 class ZoneWatch:
@@ -27,7 +28,7 @@ class ZoneWatch:
         self._bodies = handles.zone_bodies
         self.violations = 0  # control steps with both arms inside one zone
 
-    def outside(self, arm: str, zone: Zone) -> bool:
+    def outside(self, arm: Arm, zone: Zone) -> bool:
         """True when none of the arm's zone bodies is inside `zone`."""
         return not zone.any_inside(self._xpos[b] for b in self._bodies[arm])
 

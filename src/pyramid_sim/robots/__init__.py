@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+from ..choices import RobotName
 from ..errors import ConfigError
 from .baxter import BAXTER
 from .description import ArmDescription, RobotDescription
 from .panda import PANDA
 
 PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}
-DEFAULT_ROBOT = PANDA.name
+DEFAULT_ROBOT: RobotName = PANDA.name
 
 
 def robot(name: str) -> RobotDescription:

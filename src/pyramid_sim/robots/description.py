@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Mapping
 
+from ..choices import RobotName
+
 Vec3 = tuple[float, float, float]
 
 
@@ -50,7 +52,7 @@ class ArmDescription:
 class RobotDescription:
     """A robot preset: its two arms, its gripper's geometry and where things stand."""
 
-    name: str
+    name: RobotName
     summary: str
     arms: Mapping[str, ArmDescription]  # "left" and "right"
     finger_stroke: float  # m each finger travels: the real hand's joint range

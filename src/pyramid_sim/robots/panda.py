@@ -3,6 +3,7 @@ pyramid_sim began with. Every Panda name, limit and dimension lives here."""
 
 from __future__ import annotations
 
+from ..choices import Arm
 from .description import ArmDescription, RobotDescription
 
 # The real Panda's limits (Franka datasheet, also in example-robot-data's URDF).
@@ -21,7 +22,7 @@ FINGERS = ("panda_leftfinger", "panda_rightfinger")
 GUARDED = ("panda_link3", "panda_link4", "panda_link5", "panda_link6", "panda_link7", HAND)
 
 
-def _arm(arm: str) -> ArmDescription:
+def _arm(arm: Arm) -> ArmDescription:
     def name(n: str) -> str:
         return f"{arm}/{n}"  # each Panda is attached with the prefix "left/" or "right/"
 

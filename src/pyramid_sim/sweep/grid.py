@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from ..config import SCHEDULES, SimConfig
-from ..core.plan import ARM_CHOICES
+from ..choices import ARM_CHOICES, SCHEDULES, ArmChoice, RobotName, Schedule
+from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
 from ..params import PARAMS, check_range, param
@@ -78,12 +78,12 @@ class RunSpec:
     """One build of the sweep: a grid point and a seed."""
 
     structure: StructureSpec
-    arms: str
+    arms: ArmChoice
     params: tuple[tuple[str, float], ...]  # in PARAMS order
     seed: int
     spawn_jitter_mm: float
-    robot: str = DEFAULT_ROBOT
-    schedule: str = SCHEDULES[0]
+    robot: RobotName = DEFAULT_ROBOT
+    schedule: Schedule = SCHEDULES[0]
 
     def config(self, base: SimConfig | None = None) -> SimConfig:
         config = replace(base or SimConfig(), robot=self.robot, schedule=self.schedule)
@@ -112,15 +112,15 @@ class SweepConfig:
 
     axes: tuple[Axis, ...] = field(default_factory=tuple)  # only the axes the user gave
     structure: StructureSpec = field(default_factory=StructureSpec)
-    arms: str = "both"
+    arms: ArmChoice = "both"
     repeats: int = 1
     spawn_jitter_mm: float = 2.0
     workers: int = 2
     timeout: float = 900.0
     backend: str = "process"
     ray_address: str | None = None
-    robot: str = DEFAULT_ROBOT
-    schedule: str = SCHEDULES[0]
+    robot: RobotName = DEFAULT_ROBOT
+    schedule: Schedule = SCHEDULES[0]
 
     def __post_init__(self) -> None:
         SimConfig(robot=self.robot, schedule=self.schedule)  # unknown: one line naming those known

@@ -1,0 +1,23 @@
+"""The names a setting can take, as Literal types for the type checker and as the tuples the
+command line and the settings' checks read: one list of each, here."""
+
+from __future__ import annotations
+
+from typing import Literal, get_args
+
+Arm = Literal["left", "right"]
+ArmChoice = Literal["both", "left", "right"]  # who builds: both arms (split) or one alone
+Schedule = Literal["lockstep", "overlap"]
+RobotName = Literal["panda", "baxter"]
+Camera = Literal["overview", "front", "top"]
+
+ARMS: tuple[Arm, ...] = get_args(Arm)  # left first: the order of every per-arm array
+ARM_CHOICES: tuple[ArmChoice, ...] = get_args(ArmChoice)
+SCHEDULES: tuple[Schedule, ...] = get_args(Schedule)
+ROBOT_NAMES: tuple[RobotName, ...] = get_args(RobotName)
+CAMERAS: tuple[Camera, ...] = get_args(Camera)
+
+__all__ = [
+    "ARMS", "ARM_CHOICES", "CAMERAS", "ROBOT_NAMES", "SCHEDULES", "Arm", "ArmChoice", "Camera",
+    "RobotName", "Schedule",
+]
