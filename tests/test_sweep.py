@@ -18,7 +18,7 @@ from pyramid_sim.errors import ConfigError
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
 from pyramid_sim.sweep.report import grid_rows, summary_table, write_heatmaps
 from pyramid_sim.sweep.runner import RunResult, make_row, run_processes
-from pyramid_sim.sweep.store import COLUMNS, SweepStore
+from pyramid_sim.sweep.store import COLUMNS, SweepRow, SweepStore
 
 
 def test_range_and_list_grids():
@@ -127,10 +127,9 @@ def test_the_map_and_summary_show_success_and_the_envelope_edge(tmp_path):
     rows = []
     for spec in config.runs():
         heavy = spec.config().brick.mass > 1
-        rows.append({k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
-                     for k, v in make_row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
-                                      worst_error_xy_mm=math.inf if heavy else 1.5,
-                                      max_slip_mm=40.0 if heavy else 0.8).items()})
+        rows.append(SweepRow.of(make_row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
+                                         worst_error_xy_mm=math.inf if heavy else 1.5,
+                                         max_slip_mm=40.0 if heavy else 0.8)))
     table = summary_table(rows, config)
     assert table.count("1/1") == 2 and table.count("0/1") == 2 and "not placed" in table
     write_heatmaps(rows, config, tmp_path / "sweep.png")
@@ -200,8 +199,7 @@ def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
 
     assert coulomb_mass_limit(20.0, 1.0) == pytest.approx(4.077, abs=1e-3)
     config = SweepConfig(axes=(parse_axis("grip_force", "2:20:3"), parse_axis("brick_mass", "0.5,1")))
-    rows = [{k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
-             for k, v in row.items()} for row in _spec_rows(config)]
+    rows = [SweepRow.of(row) for row in _spec_rows(config)]
     write_heatmaps(rows, config, tmp_path / "map.png")
     assert (tmp_path / "map.png").stat().st_size > 10_000
 
@@ -321,7 +319,7 @@ def test_a_groups_plot_draws_every_run_of_it_in_the_folder_and_no_other():
     fine = SweepConfig(axes=(parse_axis("friction", "0.7,0.8"),))
     held = SweepConfig(axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.8")))
     other = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), structure=StructureSpec("wall"))
-    rows = [{k: str(v) for k, v in make_row(spec, 1.0, None).items()}
+    rows = [SweepRow.of(make_row(spec, 1.0, None))
             for config in (coarse, fine, held, other) for spec in config.runs()]
     assert sorted(r["friction"] for r in group_rows(rows, fine)) == ["0.5", "0.7", "0.8", "1.0"]
     assert [r["brick_mass"] for r in group_rows(rows, held)] == ["0.8", "0.8"]
@@ -329,8 +327,7 @@ def test_a_groups_plot_draws_every_run_of_it_in_the_folder_and_no_other():
 
 def test_a_value_no_run_measured_is_n_a_never_a_dash(tmp_path):
     config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
-    rows = [{k: ("" if v is None else str(v).lower() if isinstance(v, bool) else str(v))
-             for k, v in make_row(spec, 1.0, "dropped at the spot", success=False).items()}
+    rows = [SweepRow.of(make_row(spec, 1.0, "dropped at the spot", success=False))
             for spec in config.runs()]
     table = summary_table(rows, config)
     cells = [c for line in table.splitlines()[1:] for c in line.split("  ") if c.strip()]
@@ -347,3 +344,17 @@ def test_a_sweep_png_not_drawn_by_a_sweep_is_left_alone(tmp_path):
     _, path = report(_swept(tmp_path, config), config, tmp_path)
     assert path.name == "sweep_panda_lockstep_pyramid-even_layers=4_both_friction_jitter=2.png"
     assert (tmp_path / "sweep.png").read_bytes() == b"not a plot of ours"
+
+
+def test_a_sweep_row_reads_its_cells_typed(tmp_path):
+    config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
+    ok, crashed = (make_row(spec, 1.0, reason, success=reason is None, max_slip_mm=0.8)
+                   for spec, reason in zip(config.runs(), (None, "crashed: ValueError: x")))
+    store = SweepStore(tmp_path / "sweep.csv")
+    store.append(ok)
+    store.append(crashed)
+    rows = SweepStore(tmp_path / "sweep.csv").rows  # read back from the file
+    assert [r.success for r in rows] == [True, False]
+    assert [r.broken for r in rows] == [False, True] and rows[0].failure_reason == ""
+    assert rows[0].number("max_slip_mm") == 0.8 and math.isnan(rows[0].number("worst_error_xy_mm"))
+    assert rows[1].key == tuple(rows[1][c] for c in COLUMNS[: len(rows[1].key)])

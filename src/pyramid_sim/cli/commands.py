@@ -165,8 +165,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         )
         table, plot = report(rows, config, args.out)
     print(table)
-    ok = sum(r["success"] == "true" for r in rows)
-    broken = [r for r in rows if r["failure_reason"].startswith(("crashed", "timeout"))]
+    ok = sum(r.success for r in rows)
+    broken = [r for r in rows if r.broken]
     print(
         f"{ok}/{len(rows)} builds succeeded ({ran} run now, {runs - ran} already in the CSV) -> "
         f"{args.out / 'sweep.csv'}, {plot}"

@@ -13,6 +13,7 @@ from ..config import SimConfig
 from ..output.result import Tolerances
 from .grid import SweepConfig
 from .report import axis_values, number, plot_title, save_plot
+from .store import SweepRow
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -20,14 +21,14 @@ if TYPE_CHECKING:
 UNPLACED_COLOUR = "#d7301f"
 
 
-def _by_value(rows: list[dict[str, str]], name: str) -> dict[float, list[dict[str, str]]]:
-    groups: dict[float, list[dict[str, str]]] = {}
+def _by_value(rows: list[SweepRow], name: str) -> dict[float, list[SweepRow]]:
+    groups: dict[float, list[SweepRow]] = {}
     for r in rows:
         groups.setdefault(float(r[name]), []).append(r)
     return groups
 
 
-def _spread(ax: "Axes", groups: dict[float, list[dict[str, str]]], column: str, limit: float,
+def _spread(ax: "Axes", groups: dict[float, list[SweepRow]], column: str, limit: float,
             limit_text: str, unplaced: bool) -> None:
     """Each run's value as a point, the mean over the runs of a value as a line, their range as
     a band; with `unplaced`, a run with no value (a brick never placed) is a red cross along
@@ -64,9 +65,9 @@ def _spread(ax: "Axes", groups: dict[float, list[dict[str, str]]], column: str, 
               frameon=False)  # below the axes: never over a point
 
 
-def _success(ax: "Axes", groups: dict[float, list[dict[str, str]]]) -> None:
+def _success(ax: "Axes", groups: dict[float, list[SweepRow]]) -> None:
     xs = sorted(groups)
-    ok = [sum(r["success"] == "true" for r in groups[x]) for x in xs]
+    ok = [sum(r.success for r in groups[x]) for x in xs]
     rates = [k / len(groups[x]) for k, x in zip(ok, xs)]
     ax.plot(xs, rates, "o-", color="#1a9850", linewidth=1.5, markersize=6)
     for x, rate, k in zip(xs, rates, ok):
@@ -75,7 +76,7 @@ def _success(ax: "Axes", groups: dict[float, list[dict[str, str]]]) -> None:
     ax.set_ylim(-0.05, 1.15)
 
 
-def write_lines(rows: list[dict[str, str]], config: SweepConfig, path: Path) -> None:
+def write_lines(rows: list[SweepRow], config: SweepConfig, path: Path) -> None:
     """Success rate, worst placement error and max slip against the swept parameter, as a PNG
     written atomically (save_plot names its group inside it)."""
     import matplotlib

@@ -17,7 +17,7 @@ from ..output.files import write_atomic
 from ..output.result import Tolerances
 from ..params import param
 from .grid import Axis, SweepConfig, value_text
-from .store import row_key
+from .store import SweepRow, row_key
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -45,24 +45,24 @@ def number(text: str | None) -> float:
     return float(text) if text not in ("", None) else math.nan
 
 
-def _stats(rows: list[dict[str, str]]) -> CellStats:
+def _stats(rows: list[SweepRow]) -> CellStats:
     errors = [number(r["worst_error_xy_mm"]) for r in rows]
     slips = [s for s in (number(r["max_slip_mm"]) for r in rows) if not math.isnan(s)]
     return CellStats(
         runs=len(rows),
-        succeeded=sum(r["success"] == "true" for r in rows),
+        succeeded=sum(r.success for r in rows),
         worst_error_mm=max((math.inf if math.isnan(e) else e) for e in errors) if errors else math.nan,
         max_slip_mm=max(slips) if slips else math.nan,
     )
 
 
-def grid_rows(rows: list[dict[str, str]], config: SweepConfig) -> list[dict[str, str]]:
+def grid_rows(rows: list[SweepRow], config: SweepConfig) -> list[SweepRow]:
     """The rows of this sweep's grid (a folder may hold rows of other grids too)."""
     keys = {spec.key() for spec in config.runs()}
     return [r for r in rows if row_key(r) in keys]
 
 
-def group_rows(rows: list[dict[str, str]], config: SweepConfig) -> list[dict[str, str]]:
+def group_rows(rows: list[SweepRow], config: SweepConfig) -> list[SweepRow]:
     """The rows of the folder in this sweep's group, which its plot draws: the same robot,
     schedule, structure, size, arms, spawn jitter and held parameters, any value of the swept
     ones and any seed (so two grids of one group share a plot, each point once)."""
@@ -110,25 +110,25 @@ def plot_path(out: Path, config: SweepConfig) -> Path:
     return out / f"sweep_{label}.png"
 
 
-def axis_values(rows: list[dict[str, str]], axis: Axis) -> tuple[float, ...]:
+def axis_values(rows: list[SweepRow], axis: Axis) -> tuple[float, ...]:
     """The axis's values in the grid and in the rows drawn, in order."""
     return tuple(sorted({*axis.values, *(float(r[axis.name]) for r in rows)}))
 
 
 def cells(
-    rows: list[dict[str, str]], x: Axis, y: Axis | None
+    rows: list[SweepRow], x: Axis, y: Axis | None
 ) -> dict[tuple[str, str | None], CellStats]:
     """Statistics per (x, y) cell, folding repeats and any other varying parameter."""
-    groups: dict[tuple[str, str | None], list[dict[str, str]]] = {}
+    groups: dict[tuple[str, str | None], list[SweepRow]] = {}
     for r in rows:
         groups.setdefault((r[x.name], r[y.name] if y else None), []).append(r)
     return {k: _stats(v) for k, v in groups.items()}
 
 
-def summary_table(rows: list[dict[str, str]], config: SweepConfig) -> str:
+def summary_table(rows: list[SweepRow], config: SweepConfig) -> str:
     """One line per grid point: its parameters, successes over runs, worst error, max slip."""
     varying = [a for a in config.full_axes() if len(a.values) > 1] or [config.full_axes()[0]]
-    groups: dict[tuple[str, ...], list[dict[str, str]]] = {}
+    groups: dict[tuple[str, ...], list[SweepRow]] = {}
     for r in rows:
         groups.setdefault(tuple(r[a.name] for a in varying), []).append(r)
     header = [a.label for a in varying] + ["ok/runs", "worst xy mm", "max slip mm"]
@@ -146,7 +146,7 @@ def _fmt(v: float) -> str:
     return "not placed" if math.isinf(v) else f"{v:.2f}"
 
 
-def write_heatmaps(rows: list[dict[str, str]], config: SweepConfig, path: Path) -> None:
+def write_heatmaps(rows: list[SweepRow], config: SweepConfig, path: Path) -> None:
     """Success rate, worst placement error and max slip over the two main axes, as a PNG
     written atomically. Errors beyond the placing tolerance, and bricks never placed, show in
     the colour map's 'over' colour so the envelope's edge stands out."""
@@ -211,7 +211,7 @@ def save_plot(fig: "Figure", path: Path, config: SweepConfig, what: str) -> None
         plt.close(fig)
 
 
-def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[dict[str, str]]) -> str:
+def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[SweepRow]) -> str:
     """What the plot shows: the group (robot, schedule, structure), the runs a point, and the
     parameters held or folded."""
     fixed = ", ".join(

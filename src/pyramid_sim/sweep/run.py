@@ -10,7 +10,7 @@ from typing import Callable
 from .grid import SweepConfig, value_text
 from .report import grid_rows, group_rows, plot_path, summary_table, write_heatmaps
 from .runner import RunResult, run_processes, run_ray
-from .store import SweepStore
+from .store import SweepRow, SweepStore
 
 
 def run_file_name(result: RunResult) -> str:
@@ -29,7 +29,7 @@ def run_sweep(
     out: Path,
     on_row: Callable[[RunResult], None] | None = None,
     on_skip: Callable[[int], object] | None = None,
-) -> tuple[list[dict[str, str]], int]:
+) -> tuple[list[SweepRow], int]:
     """Run what is missing from `out/sweep.csv`; returns the grid's rows and how many ran now.
     Each run's full result document goes to `out/runs/`; `on_skip` hears how many runs were
     already in the CSV."""
@@ -54,7 +54,7 @@ def run_sweep(
     return grid_rows(store.rows, config), len(todo)
 
 
-def report(rows: list[dict[str, str]], config: SweepConfig, out: Path) -> tuple[str, Path]:
+def report(rows: list[SweepRow], config: SweepConfig, out: Path) -> tuple[str, Path]:
     """Draw the plot of this sweep's group: every run of the group in `out/sweep.csv`, against
     the swept parameter (lines) or over the first two (heatmaps). Returns the summary table of
     `rows` (this grid's) and the plot's path."""

@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
 from ..errors import ConfigError
 from ..params import PARAMS
@@ -27,7 +29,47 @@ RESULT_COLUMNS = (*RESULT_FIELDS, "wall_time_s", "failure_reason")
 COLUMNS = KEY_COLUMNS + RESULT_COLUMNS
 
 
-def row_key(row: dict[str, str]) -> tuple[str, ...]:
+@dataclass(frozen=True)
+class SweepRow:
+    """One run of a sweep as `sweep.csv` holds it: every cell as written (`row[column]`), and
+    the results typed."""
+
+    cells: Mapping[str, str]
+
+    @classmethod
+    def of(cls, row: Mapping[str, Any]) -> SweepRow:
+        """A run's values (as `runner.make_row` gives them) spelled as the CSV writes them."""
+        return cls({c: _cell(row[c]) for c in COLUMNS})
+
+    def __getitem__(self, column: str) -> str:
+        return self.cells[column]
+
+    @property
+    def key(self) -> tuple[str, ...]:
+        """The key columns' cells: what names the run."""
+        return tuple(self.cells[c] for c in KEY_COLUMNS)
+
+    @property
+    def success(self) -> bool:
+        return self.cells["success"] == "true"
+
+    @property
+    def failure_reason(self) -> str:
+        """Why the run failed; empty when it succeeded."""
+        return self.cells["failure_reason"]
+
+    @property
+    def broken(self) -> bool:
+        """The run crashed or timed out: its point measures nothing."""
+        return self.failure_reason.startswith(("crashed", "timeout"))
+
+    def number(self, column: str) -> float:
+        """A numeric cell; NaN when the run measured nothing there (an empty cell)."""
+        text = self.cells[column]
+        return float(text) if text else math.nan
+
+
+def row_key(row: SweepRow | Mapping[str, str]) -> tuple[str, ...]:
     return tuple(row[c] for c in KEY_COLUMNS)
 
 
@@ -36,7 +78,7 @@ class SweepStore:
 
     def __init__(self, path: Path) -> None:
         self.path = path
-        self._rows: list[dict[str, str]] = []
+        self._rows: list[SweepRow] = []
         if path.exists():
             self._repair_and_load()
         # else the file, header first, is written with the first finished run: a sweep that
@@ -61,7 +103,7 @@ class SweepStore:
         for row in reader:
             if row_key(row) not in seen:  # a duplicate could only come from a hand edit
                 seen.add(row_key(row))
-                self._rows.append(row)
+                self._rows.append(SweepRow(row))
 
     def _append_text(self, text: str) -> None:
         fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
@@ -72,7 +114,7 @@ class SweepStore:
             os.close(fd)
 
     @property
-    def rows(self) -> list[dict[str, str]]:
+    def rows(self) -> list[SweepRow]:
         return list(self._rows)
 
     def done(self) -> set[tuple[str, ...]]:
@@ -80,7 +122,7 @@ class SweepStore:
 
     def append(self, row: dict[str, Any]) -> None:
         """Write one finished run (its values spelled as the row has them)."""
-        text_row = {c: _cell(row[c]) for c in COLUMNS}
+        text_row = SweepRow.of(row)
         if not self.path.exists():
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self._append_text(_line(COLUMNS))
