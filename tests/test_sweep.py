@@ -15,9 +15,9 @@ from pathlib import Path
 import pytest
 
 from pyramid_sim.errors import ConfigError
+from pyramid_sim.sweep.backends import RunResult, make_row, run_processes
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
 from pyramid_sim.sweep.report import grid_rows, summary_table, write_heatmaps
-from pyramid_sim.sweep.runner import RunResult, make_row, run_processes
 from pyramid_sim.sweep.store import COLUMNS, SweepRow, SweepStore
 
 
@@ -205,7 +205,7 @@ def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
 
 
 def test_a_refused_ray_connection_says_what_to_set(monkeypatch):
-    from pyramid_sim.sweep.runner import ray_connection_advice
+    from pyramid_sim.sweep.backends import ray_connection_advice
 
     monkeypatch.delenv("RAY_AUTH_MODE", raising=False)
     text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect to Ray cluster"))
@@ -236,10 +236,10 @@ def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
 def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, raised, shown):
     """Output written straight to file descriptor 2 while connecting (as Ray's C++ core does)
     is dropped when the cluster refuses the connection, and passed on otherwise."""
-    from pyramid_sim.sweep import runner
+    from pyramid_sim.sweep import backends
 
     try:
-        with runner.native_stderr_held(True):
+        with backends.native_stderr_held(True):
             os.write(2, b"native retry warning\n")
             if raised is not None:
                 raise raised("refused" if raised is ConnectionError else "other")

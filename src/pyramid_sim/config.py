@@ -167,7 +167,7 @@ class SimConfig:
         )
 
     @property
-    def robot_spec(self) -> RobotDescription:
+    def robot_description(self) -> RobotDescription:
         """The description of the robot this build runs (`robots/`)."""
         return robot(self.robot)
 

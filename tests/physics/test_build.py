@@ -9,9 +9,9 @@ import pytest
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.result import Tolerances
-from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
+from pyramid_sim.physics.reach import prepare
 from pyramid_sim.resources import GOALS
 
 pytestmark = pytest.mark.physics
@@ -222,7 +222,7 @@ def test_only_the_overlap_schedule_lifts_quickly_and_turns_on_the_way_up(schedul
     steps = loop.dispatch.runners["left"].steps
     grip = next(i for i, s in enumerate(steps) if s.name == "grip")
     grasped, lifted = steps[grip - 1].pose.yaw, steps[grip + 1].pose.yaw
-    reference = config.robot_spec.arms["left"].yaw_reference
+    reference = config.robot_description.arms["left"].yaw_reference
     target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, reference)
     lift = steps[grip + 1].speed
     if schedule == "lockstep":

@@ -14,11 +14,11 @@ import pyramid_sim
 from pyramid_sim.config import SimConfig
 from pyramid_sim.output.judge import judge
 from pyramid_sim.physics import names as c
-from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.handles import SceneHandles
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.physics.monitor import StepMonitor, joint_limits
+from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.robots.common import robots_dir
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner

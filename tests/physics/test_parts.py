@@ -35,8 +35,8 @@ def scene():
     model = build_scene(CONFIG, BRICKS).model
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
-    handles = SceneHandles(model, CONFIG.robot_spec, BRICKS)
-    spawner = Spawner(model, CONFIG.robot_spec, handles, PLAN.spawn, clearance=0.02,
+    handles = SceneHandles(model, CONFIG.robot_description, BRICKS)
+    spawner = Spawner(model, CONFIG.robot_description, handles, PLAN.spawn, clearance=0.02,
                       arm_clearance=0.10, jitter=0.0, seed=0)
     return model, data, handles, spawner
 
@@ -140,7 +140,7 @@ def test_the_closest_approach_is_the_true_distance_from_the_first_look():
     parts = make_parts(PLAN, CONFIG)
     assert parts.clearance.closest == float("inf") and parts.clearance.closest_time is None
     parts.clearance.update()
-    model, data, robot, fromto = parts.model, parts.data, CONFIG.robot_spec, np.zeros(6)
+    model, data, robot, fromto = parts.model, parts.data, CONFIG.robot_description, np.zeros(6)
     left, right = (arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies
                              + robot.arms[a].finger_bodies) for a in c.ARMS)
     true = min(mujoco.mj_geomDistance(model, data, a, b, 10.0, fromto) for a in left for b in right)

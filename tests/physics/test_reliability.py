@@ -11,9 +11,9 @@ from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.judge import judge
-from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
+from pyramid_sim.physics.reach import prepare
 
 FLOOR_AWAY = (0.9, -0.9, -0.64)  # on the floor, beyond the right arm: out of everyone's way
 

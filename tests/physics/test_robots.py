@@ -34,8 +34,8 @@ def _scene(name: str, bricks: int):
     """A preset's compiled scene, fresh data and handles."""
     config = SimConfig(robot=name)
     model = build_scene(config, bricks).model
-    return config, config.robot_spec, model, mujoco.MjData(model), SceneHandles(
-        model, config.robot_spec, bricks
+    return config, config.robot_description, model, mujoco.MjData(model), SceneHandles(
+        model, config.robot_description, bricks
     )
 
 

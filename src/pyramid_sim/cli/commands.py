@@ -147,7 +147,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
     if config.backend == "ray":
-        from ..sweep.runner import require_ray
+        from ..sweep.backends import require_ray
 
         require_ray()
     from ..physics.reach import prepare

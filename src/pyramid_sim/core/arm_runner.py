@@ -41,7 +41,7 @@ class ArmRunner:
 
     @property
     def open_gap(self) -> float:
-        return self.config.robot_spec.open_gap()
+        return self.config.robot_description.open_gap()
 
     @property
     def squeeze_gap(self) -> float:
@@ -51,7 +51,7 @@ class ArmRunner:
         leave the brick slowly (a ramp to zero would cross the brick in its first few ticks
         and shove it, and open at full speed, which tips a brick just let go)."""
         grip = self.config.gripper
-        return self.config.robot_spec.squeeze_gap(
+        return self.config.robot_description.squeeze_gap(
             self.config.brick.width, grip.force, grip.stiffness
         )
 

@@ -136,7 +136,7 @@ def joint_name(config: SimConfig, joint: int | None) -> str:
     if joint is None:
         return "a joint"
     arm, k = _arm_joint(config, joint)
-    return f"the {arm} arm's joint {config.robot_spec.arms[arm].joints[k].rsplit('/', 1)[-1]}"
+    return f"the {arm} arm's joint {config.robot_description.arms[arm].joints[k].rsplit('/', 1)[-1]}"
 
 
 def joint_limit(config: SimConfig, joint: int | None, kind: str) -> float:
@@ -144,11 +144,11 @@ def joint_limit(config: SimConfig, joint: int | None, kind: str) -> float:
     if joint is None:
         return math.nan
     arm, k = _arm_joint(config, joint)
-    return getattr(config.robot_spec.arms[arm], f"{kind}_limits")[k]
+    return getattr(config.robot_description.arms[arm], f"{kind}_limits")[k]
 
 
 def _arm_joint(config: SimConfig, joint: int) -> tuple[str, int]:
-    n = len(config.robot_spec.arms[ARMS[0]].joints)
+    n = len(config.robot_description.arms[ARMS[0]].joints)
     return ARMS[joint // n], joint % n
 
 

@@ -23,8 +23,8 @@ from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 from ..robots import DEFAULT_ROBOT
-from ..sweep.grid import RunSpec
-from ..sweep.runner import RunResult, run_processes
+from ..sweep.backends import RunResult, run_processes
+from ..sweep.grid import SweepRun
 from .targets import BUILD_TO_REPLAY, structure_label
 from .timers import ik_floor_calls, timed_calls
 
@@ -197,7 +197,7 @@ def sweep_rate(
 ) -> tuple[float, int]:
     """Builds per hour of wall time running `builds` builds on `workers` worker processes, as
     `pyramid-sim sweep` does (process start and model compile included); and how many succeeded."""
-    runs = [RunSpec(spec, "both", (), seed, 0.0, robot) for seed in range(builds)]
+    runs = [SweepRun(spec, "both", (), seed, 0.0, robot) for seed in range(builds)]
     results: list[RunResult] = []
     start = time.perf_counter()
     run_processes(runs, workers, timeout=3600.0, on_result=results.append)

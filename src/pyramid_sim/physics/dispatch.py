@@ -36,7 +36,7 @@ class ArmDispatch:
         zones: dict[str, Zone],
     ) -> None:
         self.plan, self.config, self.spawner, self.zones = plan, config, spawner, zones
-        self.robot = config.robot_spec
+        self.robot = config.robot_description
         queues = (plan.arm_order("left"), plan.arm_order("right"))
         self._reach_seen: dict[tuple[Task, Task], bool] = {}
         self.scheduler: OverlapScheduler | LockstepScheduler
@@ -44,7 +44,7 @@ class ArmDispatch:
             self.scheduler = OverlapScheduler(*queues, conflict=self._reach_across)
         else:
             self.scheduler = LockstepScheduler(*queues)
-        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_spec.open_gap()) for a in c.ARMS}
+        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_description.open_gap()) for a in c.ARMS}
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
         self._settle_until: float | None = None

@@ -57,7 +57,7 @@ class DualArmIK:
         limit_acceleration: bool = True,
     ) -> None:
         self.damping = damping
-        self.robot = robot = config.robot_spec
+        self.robot = robot = config.robot_description
         arms = robot.arms
         self.model = arms_model(config)
         self.configuration = mink.Configuration(self.model)

@@ -70,7 +70,7 @@ def step_monitor(model: mujoco.MjModel, data: mujoco.MjData, handles: SceneHandl
         qpos=np.concatenate([h.arm_qpos[a] for a in c.ARMS]),
         actuators=np.concatenate([h.arm_actuators[a] for a in c.ARMS]),
         fingers=np.concatenate([h.finger_qpos[a] for a in c.ARMS]),
-        limits=joint_limits(model, config.robot_spec),
+        limits=joint_limits(model, config.robot_description),
     )
 
 
@@ -79,7 +79,7 @@ def start_at_clear_poses(
     config: SimConfig,
 ) -> None:
     """Both arms at their outer clear poses, outside every zone, hands open; the IK there."""
-    robot = config.robot_spec
+    robot = config.robot_description
     ik.reset_home()
     start = {a: ik.solve(a, clear_pose(a, robot)) for a in c.ARMS}
     for a in c.ARMS:
@@ -98,10 +98,10 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     ones that cannot be picked again) and its parts."""
     model = build_scene(config, len(plan.bricks) + config.spare_bricks).model
     data = mujoco.MjData(model)
-    handles = SceneHandles(model, config.robot_spec, len(plan.bricks) + config.spare_bricks)
+    handles = SceneHandles(model, config.robot_description, len(plan.bricks) + config.spare_bricks)
     ik = DualArmIK(config)
     spawner = Spawner(
-        model, config.robot_spec, handles, plan.spawn, clearance=SPOT_CLEARANCE,
+        model, config.robot_description, handles, plan.spawn, clearance=SPOT_CLEARANCE,
         arm_clearance=SPOT_ARM_CLEARANCE, jitter=config.layout.spawn_jitter_mm / 1000.0,
         seed=config.seed,
     )
@@ -112,6 +112,6 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     return BuildParts(
         plan=plan, config=config, model=model, data=data, handles=handles, ik=ik,
         spawner=spawner, custody=custody, dispatch=dispatch,
-        zones=ZoneWatch(zones, data, handles), clearance=ArmClearance(model, data, config.robot_spec),
+        zones=ZoneWatch(zones, data, handles), clearance=ArmClearance(model, data, config.robot_description),
         monitor=step_monitor(model, data, handles, config),
     )

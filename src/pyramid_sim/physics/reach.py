@@ -19,10 +19,10 @@ from .ik import DualArmIK
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
     """(arm, what, pose) of every move a build of `plan` makes."""
-    motion, robot = config.hand_motion, config.robot_spec
+    motion, robot = config.hand_motion, config.robot_description
     poses: list[tuple[Arm, str, Pose]] = []
     for arm in c.ARMS:
-        poses.append((arm, "clear pose", clear_pose(arm, config.robot_spec)))
+        poses.append((arm, "clear pose", clear_pose(arm, config.robot_description)))
     goals = plan.spec.goals
     for b in plan.bricks:
         label = f"brick {b.index}"
@@ -47,7 +47,7 @@ class ReachChecker:
         self.ik = DualArmIK(config, limit_acceleration=False)
         self._known: dict[tuple[str, Pose], str | None] = {}
         self.ik.reset_home()
-        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.robot_spec)) for a in c.ARMS}
+        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.robot_description)) for a in c.ARMS}
 
     def why_not(self, arm: Arm, pose: Pose) -> str | None:
         """None if the arm reaches the pose from home, else why not. The other arm waits at its

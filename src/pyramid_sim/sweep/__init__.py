@@ -6,10 +6,10 @@ Importing the package imports none of its modules (a run needs MuJoCo, the grid 
 """
 
 __all__ = [
+    "backends",
     "grid",
     "lines",
     "report",
     "run",
-    "runner",
     "store",
 ]

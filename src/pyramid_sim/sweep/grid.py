@@ -1,4 +1,4 @@
-"""A sweep's grid: which parameters vary, over which values, and one RunSpec per run.
+"""A sweep's grid: which parameters vary, over which values, and one SweepRun per run.
 
 Pure (no MuJoCo): parsing `start:stop:count` or comma lists, checking every value through the
 configuration classes, and naming each run by the text of its parameters so a re-run can tell
@@ -74,7 +74,7 @@ def parse_axis(name: str, text: str) -> Axis:
 
 
 @dataclass(frozen=True)
-class RunSpec:
+class SweepRun:
     """One build of the sweep: a grid point and a seed."""
 
     structure: StructureSpec
@@ -154,13 +154,13 @@ class SweepConfig:
         x = varying[0] if varying else full[0]
         return x, (varying[1] if len(varying) > 1 else None)
 
-    def runs(self) -> list[RunSpec]:
+    def runs(self) -> list[SweepRun]:
         """Every run: the grid's points in order, each `repeats` times with seeds 0, 1, ..."""
         points: list[tuple[tuple[str, float], ...]] = [()]
         for axis in self.full_axes():
             points = [p + ((axis.name, v),) for p in points for v in axis.values]
         return [
-            RunSpec(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot,
+            SweepRun(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot,
                     self.schedule)
             for p in points
             for seed in range(self.repeats)

@@ -7,9 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
+from .backends import RunResult, run_processes, run_ray
 from .grid import SweepConfig, value_text
 from .report import grid_rows, group_rows, plot_path, summary_table, write_heatmaps
-from .runner import RunResult, run_processes, run_ray
 from .store import SweepRow, SweepStore
 
 

@@ -38,7 +38,7 @@ class SweepRow:
 
     @classmethod
     def of(cls, row: Mapping[str, Any]) -> SweepRow:
-        """A run's values (as `runner.make_row` gives them) spelled as the CSV writes them."""
+        """A run's values (as `backends.make_row` gives them) spelled as the CSV writes them."""
         return cls({c: _cell(row[c]) for c in COLUMNS})
 
     def __getitem__(self, column: str) -> str:

@@ -17,7 +17,7 @@ BUILDERS: dict[str, Builder] = {"panda": add_panda_pair, "baxter": add_baxter}
 
 def add_robot(spec: mujoco.MjSpec, config: SimConfig) -> RobotDescription:
     """The configured robot built into `spec`; returns its description."""
-    robot = config.robot_spec
+    robot = config.robot_description
     BUILDERS[robot.name](spec, config, robot)
     return robot
 

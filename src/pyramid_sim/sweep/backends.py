@@ -21,7 +21,7 @@ from typing import Any, Callable, Iterable, Iterator
 
 from ..errors import MachineError, PyramidSimError
 from ..output.result import BuildResult
-from .grid import RunSpec
+from .grid import SweepRun
 from .store import KEY_COLUMNS, RESULT_FIELDS
 
 
@@ -29,7 +29,7 @@ from .store import KEY_COLUMNS, RESULT_FIELDS
 class RunResult:
     """A finished run: its CSV row and, when the build ran to its end, its BuildResult."""
 
-    spec: RunSpec
+    spec: SweepRun
     row: dict[str, Any]
     build: BuildResult | None = None
 
@@ -37,7 +37,7 @@ class RunResult:
 OnResult = Callable[[RunResult], None]
 
 
-def make_row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> dict[str, Any]:
+def make_row(spec: SweepRun, wall: float, reason: str | None, **results: Any) -> dict[str, Any]:
     row: dict[str, Any] = dict(zip(KEY_COLUMNS, spec.key()))
     row.update({name: None for name in RESULT_FIELDS}, success=False)
     row.update(results)
@@ -46,11 +46,11 @@ def make_row(spec: RunSpec, wall: float, reason: str | None, **results: Any) -> 
     return row
 
 
-def failed(spec: RunSpec, reason: str, wall: float) -> RunResult:
+def failed(spec: SweepRun, reason: str, wall: float) -> RunResult:
     return RunResult(spec, make_row(spec, wall, reason))
 
 
-def run_one(spec: RunSpec) -> RunResult:
+def run_one(spec: SweepRun) -> RunResult:
     """One full headless build of a grid point (in a worker). Never raises for a run's own
     failure: an exception becomes a failed row naming it."""
     start = time.perf_counter()
@@ -89,7 +89,7 @@ def _die_with_parent() -> None:
 ONE_BLAS_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
-def _worker_loop(conn: mp.connection.Connection, run: Callable[[RunSpec], RunResult]) -> None:
+def _worker_loop(conn: mp.connection.Connection, run: Callable[[SweepRun], RunResult]) -> None:
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when a sweep stops
     from ..jobs import build  # noqa: F401  import MuJoCo and mink once, before any run
@@ -104,7 +104,7 @@ def _worker_loop(conn: mp.connection.Connection, run: Callable[[RunSpec], RunRes
 
 
 class _Worker:
-    def __init__(self, ctx: Any, run: Callable[[RunSpec], RunResult]) -> None:
+    def __init__(self, ctx: Any, run: Callable[[SweepRun], RunResult]) -> None:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_loop, args=(child, run), daemon=True)
         saved = {k: os.environ.get(k) for k in ONE_BLAS_THREAD}
@@ -118,10 +118,10 @@ class _Worker:
                 else:
                     os.environ[key] = value
         child.close()
-        self.spec: RunSpec | None = None
+        self.spec: SweepRun | None = None
         self.started = 0.0
 
-    def assign(self, spec: RunSpec) -> None:
+    def assign(self, spec: SweepRun) -> None:
         self.spec, self.started = spec, time.monotonic()
         self.conn.send(spec)
 
@@ -133,11 +133,11 @@ class _Worker:
 
 
 def run_processes(
-    specs: Iterable[RunSpec],
+    specs: Iterable[SweepRun],
     workers: int,
     timeout: float,
     on_result: OnResult,
-    run: Callable[[RunSpec], RunResult] = run_one,
+    run: Callable[[SweepRun], RunResult] = run_one,
 ) -> None:
     """Run every spec in a pool of `workers` processes (fresh interpreters, one model each at a
     time); a worker that dies or passes `timeout` seconds on a run is replaced."""
@@ -249,7 +249,7 @@ def native_stderr_held(hold: bool) -> Iterator[None]:
 
 
 def run_ray(
-    specs: Iterable[RunSpec],
+    specs: Iterable[SweepRun],
     workers: int,
     timeout: float,
     on_result: OnResult,
@@ -273,7 +273,7 @@ def run_ray(
             raise PyramidSimError(ray_connection_advice(address, err)) from None
     task = ray.remote(num_cpus=1, max_retries=0)(run_one)
     pending = deque(specs)
-    running: dict[Any, tuple[RunSpec, float]] = {}
+    running: dict[Any, tuple[SweepRun, float]] = {}
     try:
         while pending or running:
             while pending and len(running) < workers:
