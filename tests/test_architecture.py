@@ -73,10 +73,10 @@ def test_the_public_api_resolves_and_has_a_version():
 
 
 def test_no_panda_name_is_spelled_outside_the_panda_preset():
-    """Only the preset (robots/panda.py, physics/robots/panda.py) and the registries that list
+    """Only the preset (robots/panda.py, physics/robot_models/panda.py) and the registries that list
     it name the Panda; everything else reads the robot's description."""
-    allowed = {"robots/panda.py", "physics/robots/panda.py", "robots/__init__.py",
-               "physics/robots/__init__.py", "robots/baxter.py",  # the last compares itself
+    allowed = {"robots/panda.py", "physics/robot_models/panda.py", "robots/__init__.py",
+               "physics/robot_models/__init__.py", "robots/baxter.py",  # the last compares itself
                "choices.py"}  # the names a setting can take
     spelled = []
     for path in SRC.rglob("*.py"):

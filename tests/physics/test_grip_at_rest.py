@@ -6,7 +6,7 @@ import mujoco
 import pytest
 
 from pyramid_sim.config import GripperConfig, SimConfig
-from pyramid_sim.physics.robots.common import tune_pads
+from pyramid_sim.physics.robot_models.common import tune_pads
 from pyramid_sim.physics.scene import brick_spec
 from pyramid_sim.resources import ASSETS
 

@@ -19,7 +19,7 @@ from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.physics.monitor import StepMonitor, joint_limits
 from pyramid_sim.physics.reach import prepare
-from pyramid_sim.physics.robots.common import robots_dir
+from pyramid_sim.physics.robot_models.common import robots_dir
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.physics.spawner import Spawner
 from pyramid_sim.robots.panda import PANDA

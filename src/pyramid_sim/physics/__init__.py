@@ -20,7 +20,7 @@ __all__ = [
     "parts",
     "reach",
     "readout",
-    "robots",
+    "robot_models",
     "scene",
     "spawner",
     "stops",

@@ -1,5 +1,5 @@
 """Compose the MuJoCo scene: assets/ world (floor, table, lights, cameras), the preset's robot
-(physics/robots/), a magazine of bricks, and the sensors that count unwanted contacts.
+(physics/robot_models/), a magazine of bricks, and the sensors that count unwanted contacts.
 
 The bricks' friction is that of brick-brick and brick-table contacts: the table top takes the
 bricks' friction, as MuJoCo gives a contact the larger of its two geoms'.
@@ -18,7 +18,7 @@ from ..core.poses import yaw_quaternion
 from ..resources import ASSETS
 from ..robots import RobotDescription
 from . import names as c
-from .robots import add_robot
+from .robot_models import add_robot
 
 PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the robots
 # Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows

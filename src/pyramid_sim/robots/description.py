@@ -3,7 +3,7 @@
 The scheduler, the primitives and the IK speak of arms as "left" and "right" and of logical
 parts (joints, tool point, fingers, pads); a description maps those to the model's own names
 and carries the real robot's limits and dimensions. Pure: no MuJoCo. The physics side
-(`physics/robots/`) builds the model a description names.
+(`physics/robot_models/`) builds the model a description names.
 """
 
 from __future__ import annotations

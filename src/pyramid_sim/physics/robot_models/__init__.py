@@ -1,4 +1,5 @@
-"""The physics side of the robot presets: each builds its robot into the scene's MjSpec."""
+"""The physics side of the robot presets (`robots/`): each builds its robot model into the
+scene's MjSpec."""
 
 from __future__ import annotations
 
