@@ -1,4 +1,4 @@
-"""The scene compiles with what issue 2 asks for (its stability under noisy commands is tested
+"""The scene compiles with its table, bricks, robot and sensors (its stability under noisy commands is tested
 for every robot preset in test_robots.py)."""
 
 import mujoco

@@ -41,7 +41,7 @@ class Target:
         return value >= bound if self.at_least else value <= bound
 
 
-BUILD_TO_REPLAY = 0.8  # the build's rate against its own physics replayed alone (issue 15)
+BUILD_TO_REPLAY = 0.8  # the build's rate against its own physics replayed alone
 
 TARGETS = (
     Target("build_to_replay_ratio", BUILD_TO_REPLAY, True, f">= {BUILD_TO_REPLAY}"),
