@@ -91,13 +91,10 @@ class BuildLoop:
         self.ik.step()
         self.hooks.on_ik(time.perf_counter() - start)
 
-    def _step_physics(self) -> bool:
+    def _step_physics(self, command: np.ndarray) -> bool:
         """The joint and gripper targets, ramped across the physics steps (stepped targets
         jolt the held brick); True if MuJoCo raised a warning."""
         m, d, hooks, ctrl = self.model, self.data, self.hooks, self.data.ctrl
-        command = self._command
-        command[self._command_q] = self.ik.configuration.q[self._ik_q]
-        command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
         change = np.zeros_like(ctrl)
         change[self.handles.ctrl_index] = command - ctrl[self.handles.ctrl_index]
         ramp = ctrl + change * self._ramp
@@ -134,7 +131,38 @@ class BuildLoop:
             return stall_reason(self.dispatch, self.custody, self.spawner, cfg, now)
         return None
 
-    # --- the build ---------------------------------------------------------------------------
+    # --- the build, a control step at a time ----------------------------------------------------
+    def expert_command(self) -> np.ndarray | None:
+        """The scripted builder's command for the next control step: both arms' joint targets
+        and gripper gaps, in `handles.ctrl_index` order. It feeds the spot, tells the schedule
+        where the arms are, advances each arm's primitive and solves the IK; None once every
+        brick is placed and has settled. Raises mink.NoSolutionFound if the IK has none."""
+        self._feed_spot()
+        self.zones.update(self.dispatch.scheduler)
+        if self.dispatch.schedule(self.data.time):
+            return None
+        self._drive_arms()
+        self._solve_ik()
+        command = self._command
+        command[self._command_q] = self.ik.configuration.q[self._ik_q]
+        command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
+        return command
+
+    def apply(self, command: np.ndarray) -> str | None:
+        """One control step of physics towards `command` (ramped across its substeps), then
+        the bricks' custody and the checks that stop a build: the reason it stopped, if it
+        did."""
+        if self._step_physics(command):
+            return warning_reason(self.data)
+        self._keep_custody()
+        return self._stop_reason()
+
+    def finish(self, failure: str | None, wall: float) -> Measurements:
+        """The measurements of the build as it stands, `failure` the reason it stopped early."""
+        self.monitor.flush()
+        self.custody.finish()
+        return measurements(self.parts, self.steps, failure, wall)
+
     def run(self, hooks: BuildHooks = BuildHooks()) -> Measurements:
         """Build the plan: control steps until every brick is placed and has settled, or until
         something stops the build (its reason is the measurement's `failure`)."""
@@ -142,23 +170,14 @@ class BuildLoop:
         failure: str | None = None
         start = time.perf_counter()
         while True:
-            self._feed_spot()
-            self.zones.update(self.dispatch.scheduler)
-            if self.dispatch.schedule(self.data.time):
-                break
-            self._drive_arms()
             try:
-                self._solve_ik()
+                command = self.expert_command()
             except mink.NoSolutionFound:
                 failure = no_motion_reason(self.data.time)
                 break
-            if self._step_physics():
-                failure = warning_reason(self.data)
+            if command is None:
                 break
-            self._keep_custody()
-            failure = self._stop_reason()
+            failure = self.apply(command)
             if failure is not None:
                 break
-        self.monitor.flush()
-        self.custody.finish()
-        return measurements(self.parts, self.steps, failure, time.perf_counter() - start)
+        return self.finish(failure, time.perf_counter() - start)
