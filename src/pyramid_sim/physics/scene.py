@@ -20,11 +20,12 @@ from ..robots import RobotDescription
 from . import names as c
 from .robot_models import add_robot
 
-PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the robots
+PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the back wall
 # Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows
 # closer than a brick's length interpenetrate, and MuJoCo throws the bricks across the floor).
 PARK_ROW_PITCH, PARK_COLUMN_PITCH = 0.30, 0.20
-PARK_X = -1.1  # m, the first row: behind any robot's pedestal
+MARKER_MARGIN = 0.006  # m the spawn marker shows around the brick
+PARK_X = -1.3  # m, the first row: behind the back wall (x = -1.0), out of every camera's sight
 
 
 def brick_spec(config: SimConfig) -> mujoco.MjSpec:
@@ -60,9 +61,11 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     # MuJoCo takes the larger of two geoms' frictions: the table top takes the bricks', so the
     # swept friction is the friction of brick-table contacts too.
     spec.geom(c.TABLE_GEOM).friction = [config.brick.friction, 0.005, 0.0001]
-    spawn = spec.site("spawn_marker")
+    spawn = spec.site("spawn_marker")  # the brick's footprint, a little larger, as it lies
     spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
     spawn.quat = list(yaw_quaternion(layout.spawn_yaw))
+    spawn.size = [config.brick.length / 2 + MARKER_MARGIN, config.brick.width / 2 + MARKER_MARGIN,
+                  0.0005]
     # Where the next brick will be set: no contact, nothing drawn; the spawner measures how
     # near bricks and arm links are to it.
     jitter = layout.spawn_jitter_mm / 1000.0

@@ -28,7 +28,14 @@ from ...config import SimConfig
 from ...resources import ASSETS
 from ...robots import ArmDescription, RobotDescription
 from ...robots.baxter import PREFIX
-from .common import add_gripper_servo, add_servos, local, tune_finger, tune_pads
+from .common import (
+    add_gripper_servo,
+    add_servos,
+    hide_collision_geoms,
+    local,
+    tune_finger,
+    tune_pads,
+)
 
 HERE = ASSETS / "robots" / "baxter"
 MESH_URL = r"package://example-robot-data/robots/baxter_description/meshes/([^\"]+)\.DAE"
@@ -109,6 +116,7 @@ def add_baxter(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) 
         body.body(f"{side}_gripper").add_site(
             name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0]
         )
+    hide_collision_geoms(body)  # the URDF's visual meshes show the robot
     spec.attach(body, prefix=PREFIX, frame=spec.worldbody.add_frame(pos=[0.0, 0.0, 0.0]))
 
 

@@ -24,6 +24,19 @@ def tune_finger(joint: mujoco.MjsJoint) -> None:
     joint.armature = 0.01
 
 
+# MuJoCo's renderer draws geom groups 0-2 by default: the robots' visual meshes go in 2, their
+# collision geometry in 3, so the camera shows the robot as it looks and the physics uses the
+# shapes it touches with.
+VISUAL_GROUP, COLLISION_GROUP = 2, 3
+
+
+def hide_collision_geoms(spec: mujoco.MjSpec) -> None:
+    """Every colliding geom of `spec` (a robot's own spec) out of the camera's sight."""
+    for geom in spec.geoms:
+        if geom.contype or geom.conaffinity:
+            geom.group = COLLISION_GROUP
+
+
 @lru_cache(maxsize=1)
 def robots_dir() -> Path:
     """example-robot-data's robots folder (its Python module needs pinocchio: not used)."""

@@ -9,25 +9,33 @@ What is changed from the URDF, and why:
 - position servos on the arm joints with the real arm's torque limits, armature 0.1, the
   preset's damping, and gravity compensation counted against the limits;
 - the rubber finger tips are the pads (common.py);
-- the collision meshes serve as visuals (the visual meshes are .dae, which MuJoCo cannot read).
+- drawn with its visual meshes and colours (converted from the .dae files, which MuJoCo cannot
+  read, by scripts/convert_panda_meshes.py), the collision geometry hidden from the camera.
 """
 
 from __future__ import annotations
+
+import json
+from pathlib import Path
 
 import mujoco
 import numpy as np
 
 from ...config import SimConfig
+from ...resources import ASSETS
 from ...robots import ArmDescription, RobotDescription
 from .common import (
+    VISUAL_GROUP,
     add_gripper_servo,
     add_servos,
+    hide_collision_geoms,
     local,
     robots_dir,
     tune_finger,
     tune_pads,
 )
 
+VISUALS = ASSETS / "robots" / "panda" / "meshes" / "visual"
 ARMATURE = 0.1
 PEDESTAL = (0.11, 0.3355)  # m, radius and half height: from the floor to the base
 
@@ -54,7 +62,24 @@ def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) ->
     spec.body("panda_hand_tcp").add_site(
         name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0]
     )
+    hide_collision_geoms(spec)
+    _add_visual_meshes(spec)
     return spec
+
+
+def _add_visual_meshes(spec: mujoco.MjSpec) -> None:
+    """Each link's visual meshes, one a colour, where its collision mesh is: drawn only, no
+    contact and no mass (the URDF's inertials stay the links' own)."""
+    parts = json.loads((VISUALS / "parts.json").read_text())
+    for geom in [g for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH]:
+        for file, rgba in parts.get(geom.meshname, ()):
+            mesh = f"visual_{Path(file).stem}"
+            if spec.mesh(mesh) is None:
+                spec.add_mesh(name=mesh, file=str(VISUALS / file))
+            geom.parent.add_geom(
+                type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh, pos=geom.pos, quat=geom.quat,
+                contype=0, conaffinity=0, group=VISUAL_GROUP, rgba=rgba, density=0, mass=0,
+            )
 
 
 def _fit_fingers(spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription) -> None:

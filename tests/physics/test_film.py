@@ -1,0 +1,129 @@
+"""What the cameras film: the robots drawn with their visual meshes and never their collision
+geometry, a spawn marker that lines up with the brick, a lab with no black in any frame, and a
+magazine of spare bricks out of every camera's sight, at rest until a brick is spawned."""
+
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # before MuJoCo's first import in this process
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from pyramid_sim.config import SimConfig  # noqa: E402
+from pyramid_sim.core.poses import yaw_of  # noqa: E402
+from pyramid_sim.core.structures import StructureSpec  # noqa: E402
+from pyramid_sim.output.renderer import HeadlessRenderer  # noqa: E402
+from pyramid_sim.physics.clearance import subtree  # noqa: E402
+from pyramid_sim.physics.hooks import BuildHooks  # noqa: E402
+from pyramid_sim.physics.loop import BuildLoop  # noqa: E402
+from pyramid_sim.physics.reach import prepare  # noqa: E402
+from pyramid_sim.physics.scene import build_scene  # noqa: E402
+
+CAMERAS = ("overview", "front", "top")
+
+
+def _loop(robot: str = "panda") -> BuildLoop:
+    config = SimConfig(robot=robot)
+    return BuildLoop.of(prepare(StructureSpec("pyramid-even", layers=1), config), config)
+
+
+def _robot_geoms(model: mujoco.MjModel, config: SimConfig) -> list[int]:
+    robot = config.robot_description
+    roots = [robot.arms[a].root_body for a in robot.arms] + list(robot.static_bodies)
+    bodies = set().union(*(subtree(model, r) for r in roots))
+    return [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies]
+
+
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_no_collision_geometry_of_the_robot_is_drawn(robot):
+    config = SimConfig(robot=robot)
+    model = build_scene(config, 2).model
+    shown = mujoco.MjvOption().geomgroup  # what a default renderer draws
+    geoms = _robot_geoms(model, config)
+    colliding = [g for g in geoms if model.geom_contype[g] or model.geom_conaffinity[g]]
+    drawn = [g for g in geoms if shown[model.geom_group[g]] and model.geom_rgba[g, 3] > 0]
+    assert colliding and drawn
+    assert not set(colliding) & set(drawn), [model.geom(g).name for g in set(colliding) & set(drawn)]
+    if robot == "panda":  # its visual meshes, in the colours of the real arm
+        colours = {tuple(np.round(model.geom_rgba[g], 2)) for g in drawn}
+        assert len(colours) >= 4 and all(model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
+                                         for g in drawn)
+
+
+def test_the_visual_meshes_weigh_nothing():
+    """Every link keeps the URDF's own mass: drawing meshes adds none."""
+    import xml.etree.ElementTree as ET
+
+    from pyramid_sim.physics.robot_models.common import robots_dir
+
+    model = build_scene(SimConfig(), 2).model
+    drawn = [g for g in range(model.ngeom) if model.geom_group[g] == 2]
+    assert drawn and all(model.geom_contype[g] == model.geom_conaffinity[g] == 0 for g in drawn)
+    urdf = ET.parse(robots_dir() / "panda_description" / "urdf" / "panda.urdf").getroot()
+    masses = {link.get("name"): float(link.find("inertial/mass").get("value"))
+              for link in urdf.iter("link") if link.find("inertial/mass") is not None}
+    assert len(masses) >= 10
+    for link, mass in masses.items():
+        assert model.body_mass[model.body(f"left/{link}").id] == pytest.approx(mass), link
+
+
+def test_the_spawn_marker_lies_as_the_spawned_brick_does():
+    loop = _loop()
+    site = loop.model.site("spawn_marker")
+    marker_yaw = yaw_of(loop.data.site_xmat[site.id].reshape(3, 3))
+    assert marker_yaw == pytest.approx(loop.config.layout.spawn_yaw, abs=1e-9)
+    length, width = site.size[:2]
+    brick = loop.config.brick
+    assert length > width and length == pytest.approx(brick.length / 2, abs=0.01)
+    slot = loop.custody.feed_spot()
+    body = loop.handles.brick_body[slot]
+    mujoco.mj_forward(loop.model, loop.data)
+    brick_yaw = yaw_of(loop.data.xmat[body].reshape(3, 3))  # its long side along its own x
+    assert abs(np.cos(brick_yaw - marker_yaw)) == pytest.approx(1.0, abs=1e-9)
+
+
+def _frames(loop: BuildLoop, hide_bricks: bool = False) -> dict[str, np.ndarray]:
+    model, rgba = loop.model, loop.model.geom_rgba.copy()
+    if hide_bricks:
+        for b in loop.handles.brick_body:
+            adr = model.body_geomadr[b]
+            model.geom_rgba[adr : adr + model.body_geomnum[b], 3] = 0.0
+    with HeadlessRenderer(model, 320, 240, "egl") as renderer:
+        frames = {}
+        for camera in CAMERAS:
+            renderer.update_scene(loop.data, camera)
+            frames[camera] = renderer.render()
+    model.geom_rgba[:] = rgba
+    return frames
+
+
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_every_camera_films_a_lit_lab_without_black_and_without_the_magazine(robot):
+    loop = _loop(robot)
+    frames, without = _frames(loop), _frames(loop, hide_bricks=True)
+    for camera, frame in frames.items():
+        top = frame[:8].astype(float).mean()
+        assert top > 60, f"{camera}: the top rows are dark ({top:.0f})"
+        black_rows = ((frame.max(axis=2) < 20).mean(axis=1) > 0.9).sum()
+        assert black_rows == 0, f"{camera}: {black_rows} rows of the frame are black"
+        # Every brick is still parked: hiding them changes no pixel of any camera.
+        assert np.array_equal(frame, without[camera]), f"{camera} films the magazine"
+
+
+def test_the_magazine_stays_at_rest_until_a_brick_is_spawned():
+    loop = _loop()
+    h, d = loop.handles, loop.data
+    parked = {s: d.qpos[h.brick_qpos[s] : h.brick_qpos[s] + 3].copy() for s in range(h.n_bricks)}
+    stop = {"at": None}
+
+    def watch(data):
+        if data.time > 1.0 and stop["at"] is None:
+            stop["at"] = data.time
+            for slot in range(loop.spawner.next_slot, h.n_bricks):  # never spawned yet
+                q = h.brick_qpos[slot]
+                assert np.allclose(data.qpos[q : q + 3], parked[slot], atol=1e-4), slot
+                assert data.body_awake[h.brick_body[slot]] == 0, f"slot {slot} is awake"
+
+    loop.run(BuildHooks(on_step=watch))
+    assert stop["at"] is not None and loop.spawner.next_slot < h.n_bricks
