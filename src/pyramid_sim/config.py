@@ -80,6 +80,7 @@ class LayoutConfig:
     spawn_jitter_mm: float = 0.0  # each spawned brick lands up to this far off the spot in x and y
 
     def __post_init__(self) -> None:
+        check_range("table top z", self.table_top_z, 0.0, 0.3)
         check_range("spawn jitter (mm)", self.spawn_jitter_mm, 0.0, 10.0)
         check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
         check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)

@@ -68,3 +68,23 @@ def test_resting_bricks_sleep_and_a_moved_brick_wakes():
         mujoco.mj_step(model, data)
     assert abs(data.qpos[q + 2] - 0.11) < 1e-3  # it fell onto the table
     assert data.tree_asleep[trees[1]] >= 0  # the other stayed asleep
+
+
+@pytest.mark.parametrize("top", [0.079, 0.12])
+def test_the_table_stands_where_the_settings_put_its_top(top):
+    """table_top_z moves the table itself (its base still reaching the floor), not only the
+    spawn spot and the targets; a value out of range, NaN included, is refused."""
+    from pyramid_sim.config import LayoutConfig
+    from pyramid_sim.errors import ConfigError
+
+    config = SimConfig(layout=LayoutConfig(table_top_z=top))
+    model = build_scene(config, 1).model
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    table, base = model.geom("table_top").id, model.geom("table_leg").id
+    assert data.geom_xpos[table][2] + model.geom_size[table][2] == pytest.approx(top, abs=1e-12)
+    assert data.geom_xpos[base][2] - model.geom_size[base][2] == pytest.approx(-0.671, abs=1e-12)
+    assert data.site_xpos[model.site("spawn_marker").id][2] == pytest.approx(top + 0.0005)
+    for bad in (float("nan"), -0.1, 0.5):
+        with pytest.raises(ConfigError, match="table top z"):
+            LayoutConfig(table_top_z=bad)

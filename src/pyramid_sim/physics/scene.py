@@ -20,7 +20,8 @@ from ..robots import RobotDescription
 from . import names as c
 from .robot_models import add_robot
 
-PARK_Z = -0.671 + 0.031  # bricks waiting in the magazine lie on the floor behind the back wall
+FLOOR_Z = -0.671  # m: the floor of scene.xml, below the robots' pedestals
+PARK_Z = FLOOR_Z + 0.031  # bricks waiting in the magazine lie on the floor behind the back wall
 # Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows
 # closer than a brick's length interpenetrate, and MuJoCo throws the bricks across the floor).
 PARK_ROW_PITCH, PARK_COLUMN_PITCH = 0.30, 0.20
@@ -61,6 +62,7 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     # MuJoCo takes the larger of two geoms' frictions: the table top takes the bricks', so the
     # swept friction is the friction of brick-table contacts too.
     spec.geom(c.TABLE_GEOM).friction = [config.brick.friction, 0.005, 0.0001]
+    _place_table(spec, layout.table_top_z)
     spawn = spec.site("spawn_marker")  # the brick's footprint, a little larger, as it lies
     spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
     spawn.quat = list(yaw_quaternion(layout.spawn_yaw))
@@ -83,6 +85,19 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
             frame = spec.worldbody.add_frame(pos=list(park_position(slot)))
             spec.attach(brick_spec(config), prefix=c.brick_name(slot), frame=frame)
     return spec
+
+
+def _place_table(spec: mujoco.MjSpec, top_z: float) -> None:
+    """The table with its top at `top_z` (the settings' table_top_z), its base reaching down
+    to the floor."""
+    top = spec.geom(c.TABLE_GEOM)
+    half = top.size[2]
+    table = spec.body("table")
+    table.pos = [table.pos[0], table.pos[1], top_z - half]
+    base = spec.geom("table_leg")
+    bottom = top_z - 2 * half  # the underside of the top
+    base.size = [base.size[0], base.size[1], (bottom - FLOOR_Z) / 2]
+    base.pos = [0.0, 0.0, (bottom + FLOOR_Z) / 2 - (top_z - half)]
 
 
 def build_scene(config: SimConfig, n_bricks: int) -> Scene:
