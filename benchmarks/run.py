@@ -23,16 +23,36 @@ from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
 def main(argv: list[str] | None = None) -> int:
     parser = Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
     parser.add_argument("--json", type=Path, metavar="PATH", help="also write the figures here")
-    parser.add_argument("--layers", type=whole("layers", "1 to 5"), default=4,
-                        help="pyramid-even size built (default 4: 20 bricks)")
-    parser.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=DEFAULT_ROBOT,
-                        help=f"a robot preset: {', '.join(PRESETS)} (default {DEFAULT_ROBOT})")
-    parser.add_argument("--frames", type=whole("frames", "1 to 10000"), default=60,
-                        help="frames rendered per setting (default 60)")
-    parser.add_argument("--sweep-builds", type=whole("sweep builds", "1 to 100"), default=2,
-                        help="builds per worker in the sweep figures (default 2)")
-    parser.add_argument("--sweep-rounds", type=whole("sweep rounds", "1 to 10"), default=2,
-                        help="alternated 1- and 2-worker sweeps, best of each (default 2)")
+    parser.add_argument(
+        "--layers",
+        type=whole("layers", "1 to 5"),
+        default=4,
+        help="pyramid-even size built (default 4: 20 bricks)",
+    )
+    parser.add_argument(
+        "--robot",
+        type=one_of("robot", tuple(PRESETS)),
+        default=DEFAULT_ROBOT,
+        help=f"a robot preset: {', '.join(PRESETS)} (default {DEFAULT_ROBOT})",
+    )
+    parser.add_argument(
+        "--frames",
+        type=whole("frames", "1 to 10000"),
+        default=60,
+        help="frames rendered per setting (default 60)",
+    )
+    parser.add_argument(
+        "--sweep-builds",
+        type=whole("sweep builds", "1 to 100"),
+        default=2,
+        help="builds per worker in the sweep figures (default 2)",
+    )
+    parser.add_argument(
+        "--sweep-rounds",
+        type=whole("sweep rounds", "1 to 10"),
+        default=2,
+        help="alternated 1- and 2-worker sweeps, best of each (default 2)",
+    )
     args = parser.parse_args(argv)
     try:
         choose_gl_backend()  # before mujoco is imported
@@ -40,7 +60,10 @@ def main(argv: list[str] | None = None) -> int:
         from pyramid_sim.perf.targets import table
 
         bench = BenchConfig(
-            layers=args.layers, robot=args.robot, frames=args.frames, sweep_builds=args.sweep_builds,
+            layers=args.layers,
+            robot=args.robot,
+            frames=args.frames,
+            sweep_builds=args.sweep_builds,
             sweep_rounds=args.sweep_rounds,
         )
         if args.json is not None:

@@ -44,8 +44,11 @@ try:
     import numpy as np
     import trimesh
 except ImportError as exc:
-    print(f"convert_panda_meshes.py: missing converter tool ({exc.name}); "
-          "run: pip install trimesh pycollada fast-simplification", file=sys.stderr)
+    print(
+        f"convert_panda_meshes.py: missing converter tool ({exc.name}); "
+        "run: pip install trimesh pycollada fast-simplification",
+        file=sys.stderr,
+    )
     sys.exit(2)
 
 
@@ -77,7 +80,8 @@ def decimated(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
     if faces > MIN_FACES:
         reduction = 1.0 - max(TARGET_FRACTION, MIN_FACES / faces)
         v, f = fast_simplification.simplify(
-            np.asarray(mesh.vertices, dtype=np.float32), np.asarray(mesh.faces, dtype=np.int32),
+            np.asarray(mesh.vertices, dtype=np.float32),
+            np.asarray(mesh.faces, dtype=np.int32),
             target_reduction=reduction,
         )
         mesh = trimesh.Trimesh(vertices=v, faces=f, process=True)
@@ -98,7 +102,9 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=DEFAULT_OUT, help="the preset's asset folder")
     args = parser.parse_args()
-    source = Path(str(importlib.metadata.distribution("example-robot-data").locate_file(DESCRIPTION)))
+    source = Path(
+        str(importlib.metadata.distribution("example-robot-data").locate_file(DESCRIPTION))
+    )
     parts: dict[str, list[list]] = {}
     total = 0
     for link in LINKS:
@@ -116,8 +122,9 @@ def main() -> int:
             write_atomic(args.out / "meshes" / "visual" / name, data)
             parts[link].append([name, [round(c / 255, 3) for c in colour]])
             total += len(data)
-    write_atomic(args.out / "meshes" / "visual" / "parts.json",
-                 (json.dumps(parts, indent=1) + "\n").encode())
+    write_atomic(
+        args.out / "meshes" / "visual" / "parts.json", (json.dumps(parts, indent=1) + "\n").encode()
+    )
     shutil.copyfile(source / "LICENSE", args.out / "LICENSE")
     print(f"{sum(len(p) for p in parts.values())} meshes, {total / 1e6:.2f} MB -> {args.out}")
     return 0

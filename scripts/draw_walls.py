@@ -26,9 +26,15 @@ BRICK = pyramid_sim.BrickConfig()
 def footprint(pose) -> list[tuple[float, float]]:
     c, s = math.cos(pose.yaw), math.sin(pose.yaw)
     half = (BRICK.length / 2, BRICK.width / 2)
-    return [(pose.x + c * dx - s * dy, pose.y + s * dx + c * dy)
-            for dx, dy in ((-half[0], -half[1]), (half[0], -half[1]), (half[0], half[1]),
-                           (-half[0], half[1]))]
+    return [
+        (pose.x + c * dx - s * dy, pose.y + s * dx + c * dy)
+        for dx, dy in (
+            (-half[0], -half[1]),
+            (half[0], -half[1]),
+            (half[0], half[1]),
+            (-half[0], half[1]),
+        )
+    ]
 
 
 def draw(plan, top, side, title: str) -> None:
@@ -38,12 +44,27 @@ def draw(plan, top, side, title: str) -> None:
         colour = (0.72 * shade + 0.2, 0.27 * shade + 0.1, 0.18 * shade + 0.1)
         corners = footprint(b.target.pose)
         top.add_patch(Polygon(corners, closed=True, facecolor=colour, edgecolor="black", lw=0.6))
-        top.text(b.target.pose.x, b.target.pose.y, str(b.index), ha="center", va="center",
-                 fontsize=6, color="white")
+        top.text(
+            b.target.pose.x,
+            b.target.pose.y,
+            str(b.index),
+            ha="center",
+            va="center",
+            fontsize=6,
+            color="white",
+        )
         ys = [p[1] for p in corners]  # elevation: seen from in front of the robots, along x
         z = b.target.pose.z - BRICK.height / 2
-        side.add_patch(Rectangle((min(ys), z), max(ys) - min(ys), BRICK.height,
-                                 facecolor=colour, edgecolor="black", lw=0.6))
+        side.add_patch(
+            Rectangle(
+                (min(ys), z),
+                max(ys) - min(ys),
+                BRICK.height,
+                facecolor=colour,
+                edgecolor="black",
+                lw=0.6,
+            )
+        )
     s = plan.spawn
     top.add_patch(Polygon(footprint(s), closed=True, fill=False, edgecolor="green", ls="--"))
     top.set_title(f"{title}: plan view (x forward, y left)")

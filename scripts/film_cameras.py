@@ -19,12 +19,19 @@ SHOTS = (("panda", "overview"), ("panda", "front"), ("panda", "top"), ("baxter",
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parents[1] / "docs/cameras")
+    parser.add_argument(
+        "--out", type=Path, default=Path(__file__).resolve().parents[1] / "docs/cameras"
+    )
     out = parser.parse_args().out
     for robot, camera in SHOTS:
         path = out / f"{robot}_{camera}.png"
-        result = pyramid_sim.build("pyramid-even", layers=2, robot=robot, snapshot=path,
-                                   video_config=pyramid_sim.VideoConfig(camera=camera))
+        result = pyramid_sim.build(
+            "pyramid-even",
+            layers=2,
+            robot=robot,
+            snapshot=path,
+            video_config=pyramid_sim.VideoConfig(camera=camera),
+        )
         print(f"{path}: {result.bricks_placed}/{result.bricks_total} bricks in place")
 
 

@@ -107,15 +107,30 @@ def fake_build(monkeypatch):
         film()
         poses = [b.target.pose for b in plan.bricks]
         measured = Measurements(
-            plan=plan, slot_of={b.index: i for i, b in enumerate(plan.bricks)},
+            plan=plan,
+            slot_of={b.index: i for i, b in enumerate(plan.bricks)},
             final_pos=np.array([p.position for p in poses]),
             final_quat=np.array([yaw_quaternion(p.yaw) for p in poses]),
-            slip_mm={b.index: 1.0 for b in plan.bricks}, drops=(), knocks=(), sim_time=12.0,
-            wall_time=1.0, arm_arm_contacts=0, arm_body_contacts=0, zone_violations=0,
-            finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
-            speed_joint=0, warnings={}, failure=None, idle_motion_mm=0.0,
+            slip_mm={b.index: 1.0 for b in plan.bricks},
+            drops=(),
+            knocks=(),
+            sim_time=12.0,
+            wall_time=1.0,
+            arm_arm_contacts=0,
+            arm_body_contacts=0,
+            zone_violations=0,
+            finger_limit_mm=0.0,
+            joint_speed_ratio=0.5,
+            joint_torque_ratio=0.5,
+            torque_joint=3,
+            speed_joint=0,
+            warnings={},
+            failure=None,
+            idle_motion_mm=0.0,
             contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
-            closest_arm_m=0.1, closest_arm_time=1.0, physics_steps=6000,
+            closest_arm_m=0.1,
+            closest_arm_time=1.0,
+            physics_steps=6000,
         )
         return judge(replace(measured, **fake.changes), config)
 

@@ -47,8 +47,17 @@ def test_bad_settings_raise_one_config_error(kwargs, words):
 def test_an_unknown_keyword_names_every_keyword_the_function_takes():
     with pytest.raises(pyramid_sim.ConfigError) as err:
         pyramid_sim.build("pyramid", colour=1)  # refused before any physics
-    for name in ("friction", "schedule", "config", "layers", "goals", "arms", "video",
-                 "snapshot", "video_config"):
+    for name in (
+        "friction",
+        "schedule",
+        "config",
+        "layers",
+        "goals",
+        "arms",
+        "video",
+        "snapshot",
+        "video_config",
+    ):
         assert name in str(err.value).split("accepted", 1)[1]
 
 
@@ -73,7 +82,6 @@ def test_a_bad_value_reads_the_same_through_the_api_as_on_the_command_line(kwarg
     assert line.strip() == f"pyramid-sim: error: {err.value}"
 
 
-
 def test_the_hand_speed_cap_is_the_robot_at_hands():
     """Baxter's hand moves at most 0.3 m/s; the cap comes with the robot, so a config made for
     Baxter and switched to the Panda moves at the Panda's speeds, and result.json records the
@@ -96,6 +104,19 @@ def test_a_slow_motion_the_loop_cannot_film_is_refused(refused):
     with pytest.raises(pyramid_sim.ConfigError, match="less than the 2 ms physics step") as err:
         pyramid_sim.build("pyramid", layers=1, video="x/b.mp4", video_config=vc)
     assert "accepted 0.24 to 100 at 120 fps" in str(err.value)
-    line = refused(["build", "--structure", "pyramid", "--layers", "1", "--video", "x/b.mp4",
-                    "--fps", "120", "--speedup", "0.1"])
+    line = refused(
+        [
+            "build",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "1",
+            "--video",
+            "x/b.mp4",
+            "--fps",
+            "120",
+            "--speedup",
+            "0.1",
+        ]
+    )
     assert line.strip() == f"pyramid-sim: error: {err.value}"

@@ -11,19 +11,33 @@ from pathlib import Path
 import pyramid_sim
 
 SRC = Path(pyramid_sim.__file__).resolve().parent
-PURE = ("pyramid_sim", "pyramid_sim.core", "pyramid_sim.params", "pyramid_sim.config",
-        "pyramid_sim.api", "pyramid_sim.output.result", "pyramid_sim.output.judge",
-        "pyramid_sim.output.files", "pyramid_sim.sweep.grid", "pyramid_sim.sweep.store",
-        "pyramid_sim.sweep.report", "pyramid_sim.sweep.lines", "pyramid_sim.output.scene_files",
-        "pyramid_sim.cli")
+PURE = (
+    "pyramid_sim",
+    "pyramid_sim.core",
+    "pyramid_sim.params",
+    "pyramid_sim.config",
+    "pyramid_sim.api",
+    "pyramid_sim.output.result",
+    "pyramid_sim.output.judge",
+    "pyramid_sim.output.files",
+    "pyramid_sim.sweep.grid",
+    "pyramid_sim.sweep.store",
+    "pyramid_sim.sweep.report",
+    "pyramid_sim.sweep.lines",
+    "pyramid_sim.output.scene_files",
+    "pyramid_sim.cli",
+)
 
 
 def _modules(package: str) -> list[str]:
     pkg = importlib.import_module(package)
     if not hasattr(pkg, "__path__") or package == "pyramid_sim":  # the top level, not its tree
         return [package]
-    return [package] + [m.name for m in pkgutil.walk_packages(pkg.__path__, package + ".")
-                        if not m.name.endswith("__main__")]
+    return [package] + [
+        m.name
+        for m in pkgutil.walk_packages(pkg.__path__, package + ".")
+        if not m.name.endswith("__main__")
+    ]
 
 
 def test_the_pure_modules_import_and_plan_with_mujoco_blocked():
@@ -46,13 +60,18 @@ def test_no_module_imports_a_private_name_of_another():
     for path in SRC.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and node.module != "__future__":
-                offenders += [f"{path.name}: {a.name}" for a in node.names
-                              if a.name.startswith("_") and not a.name.startswith("__")]
+                offenders += [
+                    f"{path.name}: {a.name}"
+                    for a in node.names
+                    if a.name.startswith("_") and not a.name.startswith("__")
+                ]
     assert offenders == []
 
 
 def test_no_module_is_over_300_lines():
-    sizes = {p.relative_to(SRC).as_posix(): len(p.read_text().splitlines()) for p in SRC.rglob("*.py")}
+    sizes = {
+        p.relative_to(SRC).as_posix(): len(p.read_text().splitlines()) for p in SRC.rglob("*.py")
+    }
     assert max(sizes.values()) <= 300, {k: v for k, v in sizes.items() if v > 300}
 
 
@@ -75,18 +94,27 @@ def test_the_public_api_resolves_and_has_a_version():
 def test_no_panda_name_is_spelled_outside_the_panda_preset():
     """Only the preset (robots/panda.py, physics/robot_models/panda.py) and the registries that list
     it name the Panda; everything else reads the robot's description."""
-    allowed = {"robots/panda.py", "physics/robot_models/panda.py", "robots/__init__.py",
-               "physics/robot_models/__init__.py", "robots/baxter.py",  # the last compares itself
-               "choices.py"}  # the names a setting can take
+    allowed = {
+        "robots/panda.py",
+        "physics/robot_models/panda.py",
+        "robots/__init__.py",
+        "physics/robot_models/__init__.py",
+        "robots/baxter.py",  # the last compares itself
+        "choices.py",
+    }  # the names a setting can take
     spelled = []
     for path in SRC.rglob("*.py"):
         rel = path.relative_to(SRC).as_posix()
         if rel in allowed:
             continue
         tree = ast.parse(path.read_text())
-        docstrings = {id(n.body[0].value) for n in ast.walk(tree)
-                      if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef)) and n.body
-                      and isinstance(n.body[0], ast.Expr)}
+        docstrings = {
+            id(n.body[0].value)
+            for n in ast.walk(tree)
+            if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef))
+            and n.body
+            and isinstance(n.body[0], ast.Expr)
+        }
         for node in ast.walk(tree):
             if isinstance(node, ast.Constant) and isinstance(node.value, str):
                 if "panda" in node.value.lower() and id(node) not in docstrings:
@@ -100,18 +128,31 @@ def test_every_package_has_an_init_whose_all_resolves():
     for init in SRC.rglob("__init__.py"):
         tree = ast.parse(init.read_text())
         assert ast.get_docstring(tree), init
-        names = next(ast.literal_eval(n.value) for n in tree.body if isinstance(n, ast.Assign)
-                     and any(getattr(t, "id", "") == "__all__" for t in n.targets))
+        names = next(
+            ast.literal_eval(n.value)
+            for n in tree.body
+            if isinstance(n, ast.Assign)
+            and any(getattr(t, "id", "") == "__all__" for t in n.targets)
+        )
         here = init.parent
-        defined = {a.asname or a.name for n in ast.walk(tree)
-                   if isinstance(n, (ast.Import, ast.ImportFrom)) for a in n.names}
-        defined |= {t.id for n in tree.body if isinstance(n, (ast.Assign, ast.AnnAssign))
-                    for t in (n.targets if isinstance(n, ast.Assign) else [n.target])
-                    if isinstance(t, ast.Name)}
+        defined = {
+            a.asname or a.name
+            for n in ast.walk(tree)
+            if isinstance(n, (ast.Import, ast.ImportFrom))
+            for a in n.names
+        }
+        defined |= {
+            t.id
+            for n in tree.body
+            if isinstance(n, (ast.Assign, ast.AnnAssign))
+            for t in (n.targets if isinstance(n, ast.Assign) else [n.target])
+            if isinstance(t, ast.Name)
+        }
         defined |= {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
         for name in names:
             assert (here / f"{name}.py").exists() or (here / name).is_dir() or name in defined, (
-                f"{init.relative_to(SRC)}: {name}")
+                f"{init.relative_to(SRC)}: {name}"
+            )
     for folder in (p for p in SRC.rglob("*") if p.is_dir() and list(p.glob("*.py"))):
         assert (folder / "__init__.py").exists(), folder.relative_to(SRC)
 

@@ -22,7 +22,10 @@ def test_middle_brick_of_an_odd_layer():
     order = arrange(pyramid(3))  # 6 bricks: 3, 2, 1
     # layer of three: left 0.126, right -0.106, then left the middle one
     assert [(a.arm, round(a.target.pose.y, 3)) for a in order[:3]] == [
-        ("left", 0.126), ("right", -0.106), ("left", 0.01)]
+        ("left", 0.126),
+        ("right", -0.106),
+        ("left", 0.01),
+    ]
 
 
 def test_indices_follow_build_order_and_cover_every_brick():
@@ -48,5 +51,9 @@ def test_matches_the_seeds_own_loop():
             r_arm.append(right)
             lay.remove(right)
     order = arrange(targets)
-    assert [[a.target.pose.x, a.target.pose.y, a.target.pose.z] for a in order if a.arm == "left"] == l_arm
-    assert [[a.target.pose.x, a.target.pose.y, a.target.pose.z] for a in order if a.arm == "right"] == r_arm
+    assert [
+        [a.target.pose.x, a.target.pose.y, a.target.pose.z] for a in order if a.arm == "left"
+    ] == l_arm
+    assert [
+        [a.target.pose.x, a.target.pose.y, a.target.pose.z] for a in order if a.arm == "right"
+    ] == r_arm

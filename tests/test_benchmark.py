@@ -11,11 +11,23 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 KEYS = (
-    "bare_steps_per_s", "build_steps_per_s", "build_to_bare_ratio", "ik_solve_ms_median",
-    "ik_solve_ms_p99", "render_ms_per_frame_shadows", "render_ms_per_frame_no_shadows",
-    "encode_ms_per_frame", "sim_s_per_brick", "bricks_per_hour_sim", "peak_rss_mb",
-    "sweep_builds_per_hour_1", "sweep_builds_per_hour_2", "sweep_scaling",
-    "physics_us_per_control_step", "control_us_per_control_step", "control_budget_us",
+    "bare_steps_per_s",
+    "build_steps_per_s",
+    "build_to_bare_ratio",
+    "ik_solve_ms_median",
+    "ik_solve_ms_p99",
+    "render_ms_per_frame_shadows",
+    "render_ms_per_frame_no_shadows",
+    "encode_ms_per_frame",
+    "sim_s_per_brick",
+    "bricks_per_hour_sim",
+    "peak_rss_mb",
+    "sweep_builds_per_hour_1",
+    "sweep_builds_per_hour_2",
+    "sweep_scaling",
+    "physics_us_per_control_step",
+    "control_us_per_control_step",
+    "control_budget_us",
     "ik_floor_us_per_control_step",
 )
 
@@ -23,15 +35,27 @@ KEYS = (
 def _bench(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "run.py"), *args],
-        capture_output=True, text=True, timeout=600,
+        capture_output=True,
+        text=True,
+        timeout=600,
     )
 
 
 @pytest.mark.physics
 def test_benchmark_reports_every_figure(tmp_path):
     out = tmp_path / "bench.json"
-    run = _bench("--layers", "1", "--frames", "3", "--sweep-builds", "1", "--sweep-rounds", "1",
-                 "--json", str(out))
+    run = _bench(
+        "--layers",
+        "1",
+        "--frames",
+        "3",
+        "--sweep-builds",
+        "1",
+        "--sweep-rounds",
+        "1",
+        "--json",
+        str(out),
+    )
     assert run.returncode == 0, run.stderr
     figures = json.loads(out.read_text())
     for key in KEYS:

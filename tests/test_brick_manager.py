@@ -29,8 +29,16 @@ def _seed_peel(w: int, h: int) -> list:
     blength, bheight = 0.22, 0.08
     xnos = znos = offset = 0
     for _ in range(w * h):
-        square.append([round(1 + xnos * blength + offset * (blength / 2), 3), -0.8,
-                       round(0.116 + znos * bheight, 3), 0, 0, math.pi / 2])
+        square.append(
+            [
+                round(1 + xnos * blength + offset * (blength / 2), 3),
+                -0.8,
+                round(0.116 + znos * bheight, 3),
+                0,
+                0,
+                math.pi / 2,
+            ]
+        )
         if xnos < w - 1:
             xnos += 1
         else:
@@ -43,8 +51,12 @@ def _seed_peel(w: int, h: int) -> list:
         return square[: (w * 2) - 1] + square[(w * 2) : (w * 3) - 2]
     if h == 4:
         return square[: (w * 2) - 1] + square[(w * 2) : (w * 3) - 2] + square[(w * 3) : (w * 4) - 3]
-    return (square[: (w * 2) - 1] + square[(w * 2) : (w * 3) - 2] + square[(w * 3) : (w * 4) - 3]
-            + square[(w * 4) : (w * 5) - 4])
+    return (
+        square[: (w * 2) - 1]
+        + square[(w * 2) : (w * 3) - 2]
+        + square[(w * 3) : (w * 4) - 3]
+        + square[(w * 4) : (w * 5) - 4]
+    )
 
 
 @pytest.mark.parametrize("h", [1, 2, 3, 4, 5])
@@ -66,8 +78,12 @@ def test_wall_pyramid_lays_the_seeds_pattern_along_the_wall(width, layers):
     mine = wall_pyramid(width, layers, SEED_BRICK)
     assert len(mine) == len(seed) == sum(width - c for c in range(layers))
     y0 = min(t.pose.y for t in mine if t.layer == 0)
-    assert sorted(round(t.pose.y - y0, 3) for t in mine) == sorted(round(q[0] - 1.0, 3) for q in seed)
-    assert {round(t.pose.z - SEED_START[2], 4) for t in mine} == {round(c * 0.06, 4) for c in range(layers)}
+    assert sorted(round(t.pose.y - y0, 3) for t in mine) == sorted(
+        round(q[0] - 1.0, 3) for q in seed
+    )
+    assert {round(t.pose.z - SEED_START[2], 4) for t in mine} == {
+        round(c * 0.06, 4) for c in range(layers)
+    }
     assert all(t.pose.yaw == pytest.approx(math.pi / 2) for t in mine)
 
 
@@ -134,14 +150,18 @@ def _write(tmp_path, name, text):
     [
         ("g.csv", "x,y,z,yaw,colour\n0.7,0,0.11,0,red\n", "row 1: unknown column 'colour'"),
         ("g.csv", "x,y,z\n0.7,0,0.11\n0.7,0.3,abc\n", "row 2: z 'abc' is not a number"),
-        ("g.csv", "x,y,z,yaw\n0.7,0,0.11,0\n0.75,0.05,0.11,0\n", "row 1 and row 2: the bricks overlap"),
+        (
+            "g.csv",
+            "x,y,z,yaw\n0.7,0,0.11,0\n0.75,0.05,0.11,0\n",
+            "row 1 and row 2: the bricks overlap",
+        ),
         ("g.csv", "x,y,z\n0.7,0,0.14\n", "row 1: z 0.14 is not a resting height"),
         ("g.csv", "x,y,z\n0.7,0,0.05\n", "row 1: z 0.05 is not a resting height"),
         ("g.csv", "x,y,z\n", "holds no goals"),
-        ("g.json", "[{\"x\": 0.7, \"y\": 0, \"z\": 0.11}, {\"x\": 0.7, \"y\": 0.3}]", "row 2: no z"),
-        ("g.json", "{\"goals\": [1, 2]}", "list of"),
+        ("g.json", '[{"x": 0.7, "y": 0, "z": 0.11}, {"x": 0.7, "y": 0.3}]', "row 2: no z"),
+        ("g.json", '{"goals": [1, 2]}', "list of"),
         ("g.json", "{oops", "not JSON"),
-        ("g.json", "[{\"x\": 0.7, \"y\": \"inf\", \"z\": 0.11}]", "not a finite number"),
+        ("g.json", '[{"x": 0.7, "y": "inf", "z": 0.11}]', "not a finite number"),
     ],
 )
 def test_bad_goal_files_name_the_row(tmp_path, name, text, words):
@@ -150,7 +170,9 @@ def test_bad_goal_files_name_the_row(tmp_path, name, text, words):
 
 
 def test_goals_keep_their_order_and_find_their_course(tmp_path):
-    path = _write(tmp_path, "g.csv", "x,y,z,yaw\n0.73,0.05,0.11,0\n0.73,-0.1,0.11,1.5708\n0.73,0,0.172,0\n")
+    path = _write(
+        tmp_path, "g.csv", "x,y,z,yaw\n0.73,0.05,0.11,0\n0.73,-0.1,0.11,1.5708\n0.73,0,0.172,0\n"
+    )
     goals = load_goals(path, BrickConfig(), TABLE_Z)
     assert [(g.pose.y, g.layer) for g in goals] == [(0.05, 0), (-0.1, 0), (0.0, 1)]
     assert json.loads(json.dumps([g.pose.z for g in goals])) == [0.11, 0.11, 0.172]

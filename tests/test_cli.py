@@ -57,11 +57,28 @@ def test_build_writes_the_result(tmp_path):
     doc = json.loads((out / "result.json").read_text())
     assert code == 0 and doc["success"]
     assert doc["bricks_placed"] == 1
-    for key in ("sim_time_s", "wall_time_s", "max_slip_mm", "drops", "arm_arm_contacts", "mujoco_warnings"):
+    for key in (
+        "sim_time_s",
+        "wall_time_s",
+        "max_slip_mm",
+        "drops",
+        "arm_arm_contacts",
+        "mujoco_warnings",
+    ):
         assert key in doc
     brick = doc["bricks"][0]
-    for key in ("index", "arm", "layer", "target", "final", "error_xy_mm", "error_z_mm",
-                "yaw_error_deg", "tilt_deg", "dropped"):
+    for key in (
+        "index",
+        "arm",
+        "layer",
+        "target",
+        "final",
+        "error_xy_mm",
+        "error_z_mm",
+        "yaw_error_deg",
+        "tilt_deg",
+        "dropped",
+    ):
         assert key in brick
 
 
@@ -79,8 +96,11 @@ SEED_FIVE = GOALS / "seed_five.json"
         (["--structure", "pyramid", "--goals", str(SEED_FIVE)], "goals"),
         (["--structure", "list", "--goals", "/nonexistent/g.json"], "cannot read"),
         (["--structure", "pyramid", "--arms", "middle"], "arms"),
-        pytest.param(["--structure", "wall", "--wall-width", "9"], "largest reachable is width",
-                     marks=pytest.mark.physics),
+        pytest.param(
+            ["--structure", "wall", "--wall-width", "9"],
+            "largest reachable is width",
+            marks=pytest.mark.physics,
+        ),
     ],
 )
 def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, refused, args, words):
@@ -91,8 +111,11 @@ def test_bad_structure_options_are_one_line_and_exit_2(tmp_path, refused, args, 
 
 @pytest.mark.physics
 def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
-    for args in (["--structure", "wall"], ["--structure", "towers", "--arms", "right"],
-                 ["--structure", "list", "--goals", str(SEED_FIVE)]):
+    for args in (
+        ["--structure", "wall"],
+        ["--structure", "towers", "--arms", "right"],
+        ["--structure", "list", "--goals", str(SEED_FIVE)],
+    ):
         assert main(["plan", *args]) == 0
         doc = json.loads(capsys.readouterr().out)
         assert doc["structure"] == args[1] and doc["size"] and doc["bricks"]
@@ -104,8 +127,10 @@ def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
 def test_reach_prints_the_largest_size_of_every_structure(capsys):
     assert main(["reach", "--arms", "both"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[-1].startswith("Checked by IK alone") and "Not checked: joint speed, " \
-        "demanded torque with a brick held, and grip" in lines[-1]  # what a build adds
+    assert (
+        lines[-1].startswith("Checked by IK alone")
+        and "Not checked: joint speed, demanded torque with a brick held, and grip" in lines[-1]
+    )  # what a build adds
     rows = {line.split()[0]: line.split()[-1] for line in lines[1:-1]}
     assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers", "corner-wall"}
     assert rows["pyramid-even"] == "5"  # the README's figure; the default 4 fits under it
@@ -150,7 +175,7 @@ def test_the_readme_says_exit_0_iff_every_check_held_and_names_them(tmp_path, fa
     main(["build", "--layers", "1", "--quiet", "--out", str(tmp_path / "run")])
     names = json.loads((tmp_path / "run" / "result.json").read_text())["checks"]
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
-    section = readme[readme.index("## Command line"):readme.index("## Outputs")]
+    section = readme[readme.index("## Command line") : readme.index("## Outputs")]
     text = " ".join(section.split())
     assert "Exit 0 when the build succeeded: every check in `result.json`'s `checks` held" in text
     assert [n for n in names if f"`{n}`" not in section] == []

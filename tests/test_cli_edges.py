@@ -54,10 +54,27 @@ def test_the_scene_a_build_runs_is_written_for_inspection(tmp_path, capsys, suff
     import mujoco
 
     out = tmp_path / f"scene{suffix}"
-    assert main(["scene", "--structure", "pyramid", "--layers", "2", "--friction", "0.4",
-                 "--grip-force", "12", "--out", str(out)]) == 0
+    assert (
+        main(
+            [
+                "scene",
+                "--structure",
+                "pyramid",
+                "--layers",
+                "2",
+                "--friction",
+                "0.4",
+                "--grip-force",
+                "12",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     model = (mujoco.MjModel.from_binary_path if suffix == ".mjb" else mujoco.MjModel.from_xml_path)(
-        str(out))
+        str(out)
+    )
     assert model.geom("brick05/geom").friction[0] == pytest.approx(0.4)  # 3 bricks + 3 spares
     assert model.geom("table_top").friction[0] == pytest.approx(0.4)
     assert model.actuator("left/gripper").forcerange[1] == pytest.approx(12.0)
@@ -67,9 +84,28 @@ def test_the_scene_a_build_runs_is_written_for_inspection(tmp_path, capsys, suff
 @pytest.mark.physics
 def test_a_sweep_whose_every_run_timed_out_fails(tmp_path):
     proc = subprocess.run(
-        [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--structure", "pyramid", "--layers",
-         "1", "--friction", "1", "--timeout", "0.5", "--workers", "1", "--quiet", "--out",
-         str(tmp_path / "s")], capture_output=True, text=True, timeout=300,
+        [
+            sys.executable,
+            "-m",
+            "pyramid_sim.cli",
+            "sweep",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "1",
+            "--friction",
+            "1",
+            "--timeout",
+            "0.5",
+            "--workers",
+            "1",
+            "--quiet",
+            "--out",
+            str(tmp_path / "s"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
     )
     assert proc.returncode == 1, proc.stderr
     assert "sweep incomplete: 1 of 1 runs crashed or timed out" in proc.stderr
@@ -84,8 +120,13 @@ def test_an_unknown_robot_is_one_line_listing_the_presets(refused):
 
 def test_render_script_refuses_an_out_without_a_folder_in_one_line(tmp_path):
     script = ROOT / "scripts" / "render_mp4.py"
-    proc = subprocess.run([sys.executable, str(script), "--layers", "1", "--out"],
-                          capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    proc = subprocess.run(
+        [sys.executable, str(script), "--layers", "1", "--out"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=60,
+    )
     assert proc.returncode == 2 and proc.stderr.strip().splitlines() == [
         "render_mp4.py: error: argument --out: expected one argument"
     ]
@@ -114,8 +155,9 @@ def test_render_script_writes_where_it_is_told_in_any_spelling(args, out, video)
 
 @pytest.mark.parametrize("old, new", [("--width", "--video-width"), ("--height", "--video-height")])
 @pytest.mark.parametrize("value", [["480"], []])
-def test_the_video_size_flags_old_names_are_refused_naming_the_new(tmp_path, refused, fake_build,
-                                                                   old, new, value):
+def test_the_video_size_flags_old_names_are_refused_naming_the_new(
+    tmp_path, refused, fake_build, old, new, value
+):
     out = tmp_path / "run"
     err = refused(["build", "--out", str(out), "--video", str(out / "b.mp4"), old, *value])
     assert f"{old} is now {new} (the video's" in err
@@ -127,8 +169,11 @@ def test_the_video_size_flags_old_names_are_refused_naming_the_new(tmp_path, ref
     [
         (["--fps", "20"], "--fps: a setting of the video, but no --video is given"),
         (["--speedup", "4"], "--speedup: a setting of the video"),
-        (["--video-width", "320"], "--video-width: a setting of the video and the snapshot, but "
-                                   "neither --video nor --snapshot is given"),
+        (
+            ["--video-width", "320"],
+            "--video-width: a setting of the video and the snapshot, but "
+            "neither --video nor --snapshot is given",
+        ),
         (["--video-height", "240"], "--video-height: a setting of the video and the snapshot"),
         (["--camera", "top"], "--camera: a setting of the video and the snapshot"),
         (["--shadows"], "--shadows: a setting"),
@@ -148,16 +193,34 @@ def test_a_video_setting_without_its_output_is_refused_not_ignored(
 
 def test_a_still_takes_the_settings_it_uses(tmp_path, capsys, fake_build):
     out = tmp_path / "run"
-    assert main(["build", "--layers", "1", "--quiet", "--out", str(out), "--snapshot",
-                 str(out / "s.png"), "--camera", "top", "--video-width", "320"]) == 0
+    assert (
+        main(
+            [
+                "build",
+                "--layers",
+                "1",
+                "--quiet",
+                "--out",
+                str(out),
+                "--snapshot",
+                str(out / "s.png"),
+                "--camera",
+                "top",
+                "--video-width",
+                "320",
+            ]
+        )
+        == 0
+    )
 
 
 def test_no_command_prints_the_usage_and_exits_2(capsys):
     assert main([]) == 2
     captured = capsys.readouterr()
     assert captured.out == "" and captured.err.startswith("usage: pyramid-sim")
-    assert all(name in captured.err
-               for name in ("plan", "build", "view", "sweep", "reach", "scene"))
+    assert all(
+        name in captured.err for name in ("plan", "build", "view", "sweep", "reach", "scene")
+    )
 
 
 def _commands() -> dict:
@@ -177,8 +240,13 @@ def test_help_shows_every_default_and_the_choices():
     for name, parser in _commands().items():
         for action in parser._actions:
             flag = action.option_strings[0] if action.option_strings else None
-            if (flag is None or action.help == argparse.SUPPRESS or action.required
-                    or isinstance(action, argparse._HelpAction) or flag in no_default):
+            if (
+                flag is None
+                or action.help == argparse.SUPPRESS
+                or action.required
+                or isinstance(action, argparse._HelpAction)
+                or flag in no_default
+            ):
                 continue
             if "default" not in action.help:
                 missing.append(f"{name} {flag}")

@@ -28,11 +28,29 @@ def test_the_seeds_size_is_two_courses_of_six_and_one_of_three():
     courses = corner_courses(15, 5, B)
     assert [len(c) for c in courses] == [6, 6, 3]
     # Course 0: leg 0 runs through the corner, leg 1 starts a joint past its side.
-    _close(courses[0], [(-0.096, -0.043, 0), (-0.308, -0.043, 0), (-0.520, -0.043, 0),
-                        (-0.043, -0.186, 1), (-0.043, -0.398, 1), (-0.043, -0.610, 1)])
+    _close(
+        courses[0],
+        [
+            (-0.096, -0.043, 0),
+            (-0.308, -0.043, 0),
+            (-0.520, -0.043, 0),
+            (-0.043, -0.186, 1),
+            (-0.043, -0.398, 1),
+            (-0.043, -0.610, 1),
+        ],
+    )
     # Course 1: leg 1 runs through, each leg shifted by a brick width and the joint (0.090 m).
-    _close(courses[1], [(-0.186, -0.043, 0), (-0.398, -0.043, 0), (-0.610, -0.043, 0),
-                        (-0.043, -0.096, 1), (-0.043, -0.308, 1), (-0.043, -0.520, 1)])
+    _close(
+        courses[1],
+        [
+            (-0.186, -0.043, 0),
+            (-0.398, -0.043, 0),
+            (-0.610, -0.043, 0),
+            (-0.043, -0.096, 1),
+            (-0.043, -0.308, 1),
+            (-0.043, -0.520, 1),
+        ],
+    )
     _close(courses[2], courses[0][:3])
 
 
@@ -48,8 +66,11 @@ def test_width_two_has_legs_of_two_and_one():
 def _footprint(t):
     """Corners of a brick's rectangle seen from above."""
     c, s = math.cos(t.pose.yaw), math.sin(t.pose.yaw)
-    return [(t.pose.x + c * dx - s * dy, t.pose.y + s * dx + c * dy)
-            for dx in (-B.length / 2, B.length / 2) for dy in (-B.width / 2, B.width / 2)]
+    return [
+        (t.pose.x + c * dx - s * dy, t.pose.y + s * dx + c * dy)
+        for dx in (-B.length / 2, B.length / 2)
+        for dy in (-B.width / 2, B.width / 2)
+    ]
 
 
 def _overlap(a, b):
@@ -77,7 +98,10 @@ def test_no_two_bricks_of_a_course_overlap_and_courses_interlock(bricks, width):
         by_course.setdefault(t.layer, []).append(t)
     for lower, upper in zip(by_course.values(), list(by_course.values())[1:]):
         assert sum(_overlap(upper[0], t) for t in lower) >= 1
-    assert {round(t.pose.yaw, 4) for t in targets} == {round(-math.pi / 4, 4), round(math.pi / 4, 4)}
+    assert {round(t.pose.yaw, 4) for t in targets} == {
+        round(-math.pi / 4, 4),
+        round(math.pi / 4, 4),
+    }
 
 
 def test_the_corner_stands_ahead_of_the_spawn_spot_which_lies_inside_it():
@@ -110,8 +134,9 @@ def test_a_free_end_keeps_its_centre_of_mass_over_the_course_below():
 
 def test_one_arm_builds_the_same_corner_in_the_same_place():
     both, left = plan("corner-wall"), plan("corner-wall", arms="left")
-    assert sorted((b.target.pose.x, b.target.pose.y) for b in both.bricks) == \
-        sorted((b.target.pose.x, b.target.pose.y) for b in left.bricks)
+    assert sorted((b.target.pose.x, b.target.pose.y) for b in both.bricks) == sorted(
+        (b.target.pose.x, b.target.pose.y) for b in left.bricks
+    )
     assert {b.arm for b in left.bricks} == {"left"}
 
 

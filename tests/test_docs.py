@@ -31,8 +31,17 @@ def test_no_hand_counted_test_totals(page):
 def test_code_and_docs_describe_the_present_not_the_issue_tracker():
     """History lives in CHANGELOG.md; code, tests and docs say what is meant, not 'issue N'."""
     pattern = re.compile(r"\b(?:[Ii]ssues? \d+|[Ss]essions? \d+|[Ss]tops? \d+\b(?! mm))")
-    files = [*PAGES, *(ROOT / "src").rglob("*.py"), *(ROOT / "tests").rglob("*.py"),
-             *(ROOT / "benchmarks").rglob("*.py"), *(ROOT / "scripts").rglob("*.py")]
-    found = [f"{f.relative_to(ROOT)}: {m.group(0)}" for f in files
-             for m in pattern.finditer(f.read_text()) if f.name != "test_docs.py"]
+    files = [
+        *PAGES,
+        *(ROOT / "src").rglob("*.py"),
+        *(ROOT / "tests").rglob("*.py"),
+        *(ROOT / "benchmarks").rglob("*.py"),
+        *(ROOT / "scripts").rglob("*.py"),
+    ]
+    found = [
+        f"{f.relative_to(ROOT)}: {m.group(0)}"
+        for f in files
+        for m in pattern.finditer(f.read_text())
+        if f.name != "test_docs.py"
+    ]
     assert not found, found

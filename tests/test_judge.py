@@ -18,14 +18,30 @@ def _measured(**changes) -> Measurements:
     plan = pyramid_sim.plan("pyramid", layers=1)
     target = plan.bricks[0].target.pose
     good = Measurements(
-        plan=plan, slot_of={0: 0}, final_pos=np.array([target.position]),
-        final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]), slip_mm={0: 1.0}, drops=(), knocks=(),
-        sim_time=12.0, wall_time=1.0, arm_arm_contacts=0, arm_body_contacts=0, zone_violations=0,
-        finger_limit_mm=0.0, joint_speed_ratio=0.5, joint_torque_ratio=0.5, torque_joint=3,
+        plan=plan,
+        slot_of={0: 0},
+        final_pos=np.array([target.position]),
+        final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]),
+        slip_mm={0: 1.0},
+        drops=(),
+        knocks=(),
+        sim_time=12.0,
+        wall_time=1.0,
+        arm_arm_contacts=0,
+        arm_body_contacts=0,
+        zone_violations=0,
+        finger_limit_mm=0.0,
+        joint_speed_ratio=0.5,
+        joint_torque_ratio=0.5,
+        torque_joint=3,
         speed_joint=8,
-        warnings={}, failure=None, idle_motion_mm=0.0,
+        warnings={},
+        failure=None,
+        idle_motion_mm=0.0,
         contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
-        closest_arm_m=0.1, closest_arm_time=1.0, physics_steps=6000,
+        closest_arm_m=0.1,
+        closest_arm_time=1.0,
+        physics_steps=6000,
     )
     return replace(good, **changes)
 
@@ -40,15 +56,25 @@ def test_a_clean_build_passes_every_check():
     "changes, check, words",
     [
         ({"failure": "stalled at t = 70 s"}, "finished", "stalled"),
-        ({"final_pos": np.array([[0.0, 0.0, 0.0]])}, "bricks_in_place", "1 of 1 bricks not in place"),
+        (
+            {"final_pos": np.array([[0.0, 0.0, 0.0]])},
+            "bricks_in_place",
+            "1 of 1 bricks not in place",
+        ),
         ({"slip_mm": {0: 5.5}}, "slip", "slid 5.5 mm in the hand, over the 5 mm limit"),
         ({"arm_arm_contacts": 2}, "arm_arm_contacts", "2 arm-arm contacts"),
         ({"arm_body_contacts": 1}, "arm_body_contacts", "1 contacts of an arm with the robot's"),
         ({"zone_violations": 4}, "shared_zone", "both arms in one zone"),
-        ({"joint_speed_ratio": 1.02}, "joint_speed",
-         "the right arm's joint panda_joint2 moved at 1.02 of its velocity limit (2.175 rad/s)"),
-        ({"joint_torque_ratio": 1.19}, "joint_torque",
-         "the left arm's joint panda_joint4 demanded 1.19 of its torque limit (87 N m"),
+        (
+            {"joint_speed_ratio": 1.02},
+            "joint_speed",
+            "the right arm's joint panda_joint2 moved at 1.02 of its velocity limit (2.175 rad/s)",
+        ),
+        (
+            {"joint_torque_ratio": 1.19},
+            "joint_torque",
+            "the left arm's joint panda_joint4 demanded 1.19 of its torque limit (87 N m",
+        ),
         ({"finger_limit_mm": 3.0}, "finger_range", "3.00 mm past its joint range"),
         ({"idle_motion_mm": 52.0}, "idle_bricks", "nobody had touched moved 52.0 mm"),
     ],
@@ -74,7 +100,10 @@ def test_a_slip_limit_no_slip_can_reach_is_refused(limit):
     measured: such a limit could never fail a build."""
     with pytest.raises(pyramid_sim.ConfigError, match=r"accepted \(0, 30\): a brick 30 mm"):
         replace(CONFIG, slip_limit_mm=limit)
-    assert "slip" in judge(_measured(slip_mm={0: 29.0}), replace(CONFIG, slip_limit_mm=28.5)).failed_checks
+    assert (
+        "slip"
+        in judge(_measured(slip_mm={0: 29.0}), replace(CONFIG, slip_limit_mm=28.5)).failed_checks
+    )
 
 
 def test_docs_name_every_field_a_result_writes():
@@ -91,7 +120,9 @@ def test_docs_name_every_field_a_result_writes():
     text = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
     doc = judge(_measured(), CONFIG).to_dict()
     names = {*doc, *doc["bricks"][0], *doc["inputs"], *doc["checks"]}
-    names |= {f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)}
+    names |= {
+        f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)
+    }
     missing = sorted(n for n in names if f"`{n}`" not in text)
     assert not missing, f"docs/outputs.md does not name {missing}"
 
@@ -99,4 +130,6 @@ def test_docs_name_every_field_a_result_writes():
 def test_a_baxter_limit_names_the_arm_the_joint_and_the_limit():
     baxter = replace(CONFIG, robot="baxter")
     reason = judge(_measured(joint_torque_ratio=1.25, torque_joint=1), baxter).failure_reason
-    assert reason.startswith("the left arm's joint left_s1 demanded 1.25 of its torque limit (50 N m")
+    assert reason.startswith(
+        "the left arm's joint left_s1 demanded 1.25 of its torque limit (50 N m"
+    )

@@ -14,8 +14,17 @@ from pyramid_sim.output.lock import LOCK_NAME, FolderBusy, folder_lock, holding
 
 
 def _build(out, *extra):
-    return ["build", "--structure", "pyramid", "--layers", "1", "--quiet", "--out", str(out),
-            *extra]
+    return [
+        "build",
+        "--structure",
+        "pyramid",
+        "--layers",
+        "1",
+        "--quiet",
+        "--out",
+        str(out),
+        *extra,
+    ]
 
 
 def test_a_second_build_into_the_folder_of_a_running_one_is_refused(tmp_path, capsys, fake_build):
@@ -37,8 +46,20 @@ def test_a_second_build_into_the_folder_of_a_running_one_is_refused(tmp_path, ca
 def test_a_sweep_into_a_held_folder_is_refused_before_it_runs(tmp_path, refused, fake_build):
     out = tmp_path / "sweep"
     with folder_lock(out):
-        err = refused(["sweep", "--structure", "pyramid", "--layers", "1", "--friction", "1",
-                       "--quiet", "--out", str(out)])
+        err = refused(
+            [
+                "sweep",
+                "--structure",
+                "pyramid",
+                "--layers",
+                "1",
+                "--friction",
+                "1",
+                "--quiet",
+                "--out",
+                str(out),
+            ]
+        )
         assert "is held by another pyramid-sim run" in err
         assert [p.name for p in out.iterdir()] == [LOCK_NAME]  # no sweep.csv begun
     assert list(out.iterdir()) == []
@@ -57,14 +78,20 @@ def test_a_video_folder_outside_out_is_held_too_and_a_refusal_leaves_nothing(
 def test_a_lock_left_by_a_killed_run_does_not_block(tmp_path, capsys, fake_build):
     out = tmp_path / "run"
     holder = subprocess.Popen(
-        [sys.executable, "-c", textwrap.dedent(f"""
+        [
+            sys.executable,
+            "-c",
+            textwrap.dedent(f"""
             import sys, time
             from pathlib import Path
             from pyramid_sim.output.lock import folder_lock
             with folder_lock(Path({str(out)!r})):
                 print("held", flush=True)
                 time.sleep(60)
-        """)], stdout=subprocess.PIPE, text=True,
+        """),
+        ],
+        stdout=subprocess.PIPE,
+        text=True,
         env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)},
     )
     try:

@@ -115,8 +115,13 @@ def test_zones_follow_each_bricks_footprint_turned_by_its_yaw():
     assert along.x_max - along.x_min == pytest.approx(0.22)
     assert along.y_max - along.y_min == pytest.approx(0.12)
     assert across.x_max - across.x_min == pytest.approx(0.12)
-    zones = overlap_zones(Pose(0.49, 0.01, 0.11, math.pi / 2),
-                          [Pose(0.73, y, 0.11, 0.0) for y in (-0.3, 0.0, 0.3)], 0.192, 0.086, 0.04)
+    zones = overlap_zones(
+        Pose(0.49, 0.01, 0.11, math.pi / 2),
+        [Pose(0.73, y, 0.11, 0.0) for y in (-0.3, 0.0, 0.3)],
+        0.192,
+        0.086,
+        0.04,
+    )
     spot, structure = zones["spot"], zones["structure"]
     assert spot.x_max < structure.x_min  # apart: an arm may pick while the other places
     assert not spot.contains((0.73, 0.0)) and structure.contains((0.73, 0.3))
@@ -131,8 +136,13 @@ def test_reach_gap_seen_from_above():
 
 
 def test_standby_waits_outside_every_zone_across_its_line_on_the_arms_side():
-    zones = overlap_zones(Pose(0.49, 0.01, 0.11, math.pi / 2),
-                          [Pose(0.73, y, 0.11, 0.0) for y in (-0.3, 0.3)], 0.192, 0.086, 0.04)
+    zones = overlap_zones(
+        Pose(0.49, 0.01, 0.11, math.pi / 2),
+        [Pose(0.73, y, 0.11, 0.0) for y in (-0.3, 0.3)],
+        0.192,
+        0.086,
+        0.04,
+    )
     at = Pose(0.49, 0.01, 0.22, 1.0)
     for arm, sign in (("left", 1), ("right", -1)):
         step = standby_step(arm, list(zones.values()), 0.49, at, MotionConfig(), 0.1)
@@ -142,7 +152,12 @@ def test_standby_waits_outside_every_zone_across_its_line_on_the_arms_side():
 
 
 def test_zones_that_meet_become_one_box_for_both():
-    zones = overlap_zones(Pose(0.49, 0.01, 0.11, 0.0),
-                          [Pose(0.6, 0.1, 0.11, 0.0), Pose(0.8, 0.3, 0.11, 0.0)], 0.192, 0.086, 0.04)
+    zones = overlap_zones(
+        Pose(0.49, 0.01, 0.11, 0.0),
+        [Pose(0.6, 0.1, 0.11, 0.0), Pose(0.8, 0.3, 0.11, 0.0)],
+        0.192,
+        0.086,
+        0.04,
+    )
     assert zones["spot"] == zones["structure"]
     assert zones["spot"].contains((0.49, 0.01)) and zones["spot"].contains((0.8, 0.3))

@@ -75,7 +75,9 @@ def test_a_long_turn_does_not_slow_the_way(transit):
     if transit:  # over at the start's height, then straight down
         assert path.segments[0].end.position == pytest.approx([end.x, end.y, start.z])
     lengthened = plan_segment(start, end, speed=0.6, turn_rate=1.5).duration
-    assert path.duration == pytest.approx(lengthened)  # never longer than turning and moving in step
+    assert path.duration == pytest.approx(
+        lengthened
+    )  # never longer than turning and moving in step
 
 
 def test_a_turn_begun_on_a_move_never_makes_it_longer():
@@ -91,13 +93,19 @@ def test_a_turn_begun_on_a_move_never_makes_it_longer():
 
 
 def test_retracts_begin_the_next_turn_only_when_told():
-    motion, spot, target = MotionConfig(), Pose(0.49, 0.01, 0.11, math.pi / 2), Pose(0.73, 0.3, 0.11, 0.0)
+    motion, spot, target = (
+        MotionConfig(),
+        Pose(0.49, 0.01, 0.11, math.pi / 2),
+        Pose(0.73, 0.3, 0.11, 0.0),
+    )
     grasp = {"grasp_height": 0.02, "yaw_ref": 0.0}
     plain = pick_steps(spot, motion, carry_to=target, **grasp)[-1]
     turned = pick_steps(spot, motion, carry_to=target, then_yaw=0.0, **grasp)[-1]
     assert plain.name == turned.name == "retract"
     assert plain.pose.yaw == pytest.approx(math.pi / 2)
-    assert 0.0 < turned.pose.yaw < math.pi / 2 and turned.pose.position == pytest.approx(plain.pose.position)
+    assert 0.0 < turned.pose.yaw < math.pi / 2 and turned.pose.position == pytest.approx(
+        plain.pose.position
+    )
     up = place_steps(target, motion, then_yaw=math.pi / 2, **grasp)[-1]
     assert 0.0 < up.pose.yaw < math.pi / 2
     assert place_steps(target, motion, **grasp)[-1].pose.yaw == pytest.approx(0.0)
@@ -113,7 +121,9 @@ def test_bricks_a_rounding_apart_are_gripped_alike_not_half_a_turn_apart():
 @pytest.mark.parametrize("distance", [0.02, 0.1, 0.3, 1.0])
 def test_a_bounded_speed_keeps_the_moves_peak_acceleration_within_its_bound(distance):
     speed = bounded_speed(distance, 0.6, 2.0)
-    seg = plan_segment(Pose(0, 0, 0), Pose(0, 0, distance), speed=speed, turn_rate=1.0, min_duration=0.0)
+    seg = plan_segment(
+        Pose(0, 0, 0), Pose(0, 0, distance), speed=speed, turn_rate=1.0, min_duration=0.0
+    )
     dt = seg.duration / 2000
     z = np.array([seg.at(t).z for t in np.arange(0, seg.duration + dt, dt)])
     peak = np.max(np.abs(np.diff(z, 2))) / dt**2

@@ -80,8 +80,22 @@ def test_on_a_terminal_the_frames_count_never_passes_its_total_and_ends_on_it(
 def test_a_build_logged_off_a_terminal_writes_plain_lines(tmp_path, capsys, fake_build):
     fake_build.frames = 40
     out = tmp_path / "run"
-    assert main(["build", "--structure", "pyramid-even", "--layers", "2", "--out", str(out),
-                 "--video", str(out / "b.mp4")]) == 0
+    assert (
+        main(
+            [
+                "build",
+                "--structure",
+                "pyramid-even",
+                "--layers",
+                "2",
+                "--out",
+                str(out),
+                "--video",
+                str(out / "b.mp4"),
+            ]
+        )
+        == 0
+    )
     err = capsys.readouterr().err
     assert "\r" not in err and 1 <= len(err.splitlines()) <= 12
     assert err.splitlines()[-1].startswith("bricks: 6/6 bricks (100%)")

@@ -104,8 +104,7 @@ def _ours(sessions: set[int], temp_dir: str) -> list[int]:
     its temporary folder."""
     me = os.getpid()
     pids = [int(p) for p in os.listdir("/proc") if p.isdigit() and int(p) != me]
-    return [p for p in pids
-            if (_session_of(p) in sessions or _names(p, temp_dir)) and _alive(p)]
+    return [p for p in pids if (_session_of(p) in sessions or _names(p, temp_dir)) and _alive(p)]
 
 
 def _stop(sessions: set[int], temp_dir: str) -> None:
@@ -130,8 +129,14 @@ def _stop(sessions: set[int], temp_dir: str) -> None:
 
 def _ray(ray: str, args: list[str], env: dict[str, str], sessions: set[int]) -> str:
     """`ray ARGS` in a session of its own; what it printed."""
-    proc = subprocess.Popen([ray, *args], env=env, start_new_session=True, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    proc = subprocess.Popen(
+        [ray, *args],
+        env=env,
+        start_new_session=True,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+    )
     sessions.add(proc.pid)  # its session id: the daemons it leaves keep it
     try:
         out, _ = proc.communicate(timeout=120)
@@ -147,8 +152,14 @@ def _alive_nodes(address: str, count: int, env: dict[str, str]) -> list[dict]:
     are `count` of them (or after 60 s)."""
     deadline = time.monotonic() + 60
     while True:
-        done = subprocess.run([sys.executable, "-c", _NODES_SCRIPT, address], check=False,
-                              env=env, capture_output=True, text=True, timeout=120)
+        done = subprocess.run(
+            [sys.executable, "-c", _NODES_SCRIPT, address],
+            check=False,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         lines = [ln for ln in done.stdout.splitlines() if ln.startswith("NODES ")]
         nodes = json.loads(lines[-1][6:]) if done.returncode == 0 and lines else []
         if len(nodes) >= count or time.monotonic() > deadline:
@@ -169,17 +180,31 @@ def cluster(tmp_path_factory):
     port = _free_port()
     address = f"127.0.0.1:{port}"
     env = _env(home, temp_dir, token=True)
-    common = ["--node-ip-address=127.0.0.1", "--num-cpus=1", f"--temp-dir={temp_dir}",
-              "--object-store-memory=200000000", "--disable-usage-stats"]
+    common = [
+        "--node-ip-address=127.0.0.1",
+        "--num-cpus=1",
+        f"--temp-dir={temp_dir}",
+        "--object-store-memory=200000000",
+        "--disable-usage-stats",
+    ]
     try:
         _ray(ray, ["get-auth-token", "--generate"], env, sessions)
         assert (home / ".ray" / "auth_token").read_text().strip(), "no token was made"
-        head_out = _ray(ray, ["start", "--head", f"--port={port}", "--include-dashboard=false",
-                              *common], env, sessions)
+        head_out = _ray(
+            ray,
+            ["start", "--head", f"--port={port}", "--include-dashboard=false", *common],
+            env,
+            sessions,
+        )
         _ray(ray, ["start", f"--address={address}", *common], env, sessions)
         nodes = _alive_nodes(address, 2, env)
-        yield {"address": address, "nodes": nodes, "temp_dir": Path(temp_dir), "home": home,
-               "head_out": head_out}
+        yield {
+            "address": address,
+            "nodes": nodes,
+            "temp_dir": Path(temp_dir),
+            "home": home,
+            "head_out": head_out,
+        }
     finally:
         try:
             _stop(sessions, temp_dir)
@@ -188,10 +213,21 @@ def cluster(tmp_path_factory):
 
 
 def _sweep(address: str, out: Path, env: dict[str, str]) -> subprocess.CompletedProcess:
-    cmd = [sys.executable, "-m", "pyramid_sim.cli", "sweep", *GRID, "--backend", "ray",
-           "--ray-address", address, "--out", str(out), "--quiet"]
-    return subprocess.run(cmd, check=False, env=env, capture_output=True, text=True,
-                          timeout=300)
+    cmd = [
+        sys.executable,
+        "-m",
+        "pyramid_sim.cli",
+        "sweep",
+        *GRID,
+        "--backend",
+        "ray",
+        "--ray-address",
+        address,
+        "--out",
+        str(out),
+        "--quiet",
+    ]
+    return subprocess.run(cmd, check=False, env=env, capture_output=True, text=True, timeout=300)
 
 
 def _rows(path: Path) -> list[dict]:
@@ -252,8 +288,9 @@ def test_a_client_without_token_mode_is_told_to_set_it(cluster, tokenless):
     ours = [ln for ln in done.stderr.splitlines() if ln.startswith("pyramid-sim:")]
     assert len(ours) == 1, done.stderr
     assert ours[0] == done.stderr.strip().splitlines()[-1], done.stderr  # the last word
-    assert ours[0].startswith("pyramid-sim: failed: cannot connect to the Ray cluster at "
-                              f"{cluster['address']} ")
+    assert ours[0].startswith(
+        f"pyramid-sim: failed: cannot connect to the Ray cluster at {cluster['address']} "
+    )
     assert "set RAY_AUTH_MODE=token" in ours[0] and "~/.ray/auth_token" in ours[0]
     assert done.stdout == ""
     # Nothing half-written: no table, no map, no runs.

@@ -83,8 +83,10 @@ def test_a_rewrite_replaces_the_scenes_own_folder_whole(tmp_path):
     assert [p.name for p in mesh_folder(out).iterdir()] == ["hand.stl"]
 
 
-@pytest.mark.parametrize("kind, words", [("file", "is not a folder"),
-                                         ("notes", "holds other things than meshes (notes.txt)")])
+@pytest.mark.parametrize(
+    "kind, words",
+    [("file", "is not a folder"), ("notes", "holds other things than meshes (notes.txt)")],
+)
 def test_a_mesh_folder_scene_did_not_write_is_refused_in_one_line(tmp_path, refused, kind, words):
     folder = tmp_path / "x_meshes"
     if kind == "file":
@@ -92,8 +94,9 @@ def test_a_mesh_folder_scene_did_not_write_is_refused_in_one_line(tmp_path, refu
     else:
         folder.mkdir()
         (folder / "notes.txt").write_text("mine")
-    err = refused(["scene", "--structure", "pyramid", "--layers", "1",
-                   "--out", str(tmp_path / "x.xml")])
+    err = refused(
+        ["scene", "--structure", "pyramid", "--layers", "1", "--out", str(tmp_path / "x.xml")]
+    )
     assert words in err and "accepted a new .xml name" in err
     assert not (tmp_path / "x.xml").exists()
     assert folder.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["x_meshes"]

@@ -42,7 +42,9 @@ def test_seed_create_coordinates_new_numbers():
 @pytest.mark.parametrize("layers", [1, 2, 3, 4, 5])
 def test_targets_are_the_seed_coordinates_less_the_release_gap(generator, seed, layers):
     targets = generator(layers)
-    mine = sorted((round(t.pose.x, 4), round(t.pose.y, 4), round(t.pose.z + SEED_GAP, 4)) for t in targets)
+    mine = sorted(
+        (round(t.pose.x, 4), round(t.pose.y, 4), round(t.pose.z + SEED_GAP, 4)) for t in targets
+    )
     theirs = sorted(tuple(p) for p in seed(layers)[0])
     assert mine == theirs
     assert all(t.pose.yaw == 0.0 for t in targets)  # long axis away from the robots

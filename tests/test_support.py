@@ -87,8 +87,10 @@ def test_a_brick_bridging_a_gap_stands_though_its_centre_is_over_the_gap():
     footprints would refuse it; the hull of the contacts does not)."""
     below = [Pose(0.7, -0.058, REST), Pose(0.7, 0.058, REST)]
     assert _describe([*below, Pose(0.7, 0.0, UP, math.pi / 2)]) is None
-    assert "row 3: the brick would tip, its centre 39.0 mm outside its support on row 2" in \
-        _describe([*below, Pose(0.7, 0.14, UP, math.pi / 2)])
+    assert (
+        "row 3: the brick would tip, its centre 39.0 mm outside its support on row 2"
+        in _describe([*below, Pose(0.7, 0.14, UP, math.pi / 2)])
+    )
 
 
 @pytest.mark.parametrize(
@@ -98,7 +100,10 @@ def test_a_brick_bridging_a_gap_stands_though_its_centre_is_over_the_gap():
         ([Pose(0.7, 0, REST), Pose(0.7, 0.3, UP)], "row 2: the brick floats"),
         ([Pose(0.7, 0, REST), Pose(0.7, 0.087, UP)], "row 2: the brick floats"),  # edge only
         ([Pose(0.7, 0, REST), Pose(0.8, 0, UP)], "row 2: the brick would tip, its centre 4.0 mm"),
-        ([Pose(0.7, 0, REST), Pose(0.75, 0.05, REST)], "row 1 and row 2: the bricks overlap by 36.0"),
+        (
+            [Pose(0.7, 0, REST), Pose(0.75, 0.05, REST)],
+            "row 1 and row 2: the bricks overlap by 36.0",
+        ),
         ([Pose(0.7, 0, REST), Pose(0.7, 0, UP), Pose(0.7, 0.02, UP, 0.1)], "row 2 and row 3"),
     ],
 )
@@ -113,7 +118,8 @@ def test_a_brick_on_the_edge_of_its_support_or_a_hair_into_a_neighbour_stands():
 
 def _max_size(name: str) -> dict:
     return {
-        "pyramid": {"layers": MAX_LAYERS}, "pyramid-even": {"layers": MAX_LAYERS},
+        "pyramid": {"layers": MAX_LAYERS},
+        "pyramid-even": {"layers": MAX_LAYERS},
         "wall": {"bricks": MAX_BRICKS, "width": MAX_COURSE},
         "corner-wall": {"bricks": MAX_BRICKS, "width": MAX_COURSE},
         "wall-pyramid": {"width": MAX_COURSE, "layers": MAX_COURSE},
@@ -121,7 +127,9 @@ def _max_size(name: str) -> dict:
     }[name]
 
 
-@pytest.mark.parametrize("name", ["pyramid", "pyramid-even", "wall", "corner-wall", "wall-pyramid", "towers"])
+@pytest.mark.parametrize(
+    "name", ["pyramid", "pyramid-even", "wall", "corner-wall", "wall-pyramid", "towers"]
+)
 @pytest.mark.parametrize("size", ["default", "max"])
 def test_every_built_in_structure_passes_the_goal_checks(name, size):
     """In its own order and in each plan's build order, at its default and largest size."""
@@ -148,11 +156,17 @@ def _goals(tmp_path, text: str, name: str = "g.csv"):
 @pytest.mark.parametrize(
     "text, words",
     [
-        ("x,y,z\n0.7,0,0.11\n0.7,0.3,0.172\n", "g.csv row 2: the brick floats, 62 mm above the table"),
+        (
+            "x,y,z\n0.7,0,0.11\n0.7,0.3,0.172\n",
+            "g.csv row 2: the brick floats, 62 mm above the table",
+        ),
         ("x,y,z\n0.7,0,0.172\n", "g.csv row 1: the brick floats"),
         ("x,y,z\n0.7,0,0.11\n0.8,0,0.172\n", "g.csv row 2: the brick would tip"),
         ("x,y,z\n0.7,0,0.125\n", "row 1: z 0.125 is not a resting height"),  # 15 mm up
-        ("x,y,z,yaw\n0.7,0,0.11,0\n0.7,0.12,0.11,1.5708\n", "row 1 and row 2: the bricks overlap by 19.0"),
+        (
+            "x,y,z,yaw\n0.7,0,0.11,0\n0.7,0.12,0.11,1.5708\n",
+            "row 1 and row 2: the bricks overlap by 19.0",
+        ),
     ],
 )
 def test_goals_that_float_tip_or_overlap_are_refused_naming_the_row(tmp_path, text, words):

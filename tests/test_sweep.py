@@ -17,7 +17,8 @@ import pytest
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.sweep.backends import RunResult, make_row, run_processes
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
-from pyramid_sim.sweep.report import grid_rows, summary_table, write_heatmaps
+from pyramid_sim.sweep.heatmaps import write_heatmaps
+from pyramid_sim.sweep.report import grid_rows, summary_table
 from pyramid_sim.sweep.store import COLUMNS, SweepRow, SweepStore
 
 
@@ -117,8 +118,10 @@ def test_the_pool_turns_crashes_and_timeouts_into_failed_rows_and_goes_on():
     for r in results:
         by_seed.setdefault(r.spec.seed, []).append(r.row)
     assert all(row["success"] and row["failure_reason"] is None for row in by_seed[0])
-    assert all("crashed" in row["failure_reason"] and "exit status 3" in row["failure_reason"]
-               for row in by_seed[1])
+    assert all(
+        "crashed" in row["failure_reason"] and "exit status 3" in row["failure_reason"]
+        for row in by_seed[1]
+    )
     assert all("timeout" in row["failure_reason"] for row in by_seed[2])
 
 
@@ -127,9 +130,18 @@ def test_the_map_and_summary_show_success_and_the_envelope_edge(tmp_path):
     rows = []
     for spec in config.runs():
         heavy = spec.config().brick.mass > 1
-        rows.append(SweepRow.of(make_row(spec, 1.0, "dropped" if heavy else None, success=not heavy,
-                                         worst_error_xy_mm=math.inf if heavy else 1.5,
-                                         max_slip_mm=40.0 if heavy else 0.8)))
+        rows.append(
+            SweepRow.of(
+                make_row(
+                    spec,
+                    1.0,
+                    "dropped" if heavy else None,
+                    success=not heavy,
+                    worst_error_xy_mm=math.inf if heavy else 1.5,
+                    max_slip_mm=40.0 if heavy else 0.8,
+                )
+            )
+        )
     table = summary_table(rows, config)
     assert table.count("1/1") == 2 and table.count("0/1") == 2 and "not placed" in table
     write_heatmaps(rows, config, tmp_path / "sweep.png")
@@ -137,8 +149,20 @@ def test_the_map_and_summary_show_success_and_the_envelope_edge(tmp_path):
 
 
 def _sweep_cmd(out: Path, *extra: str) -> list[str]:
-    return [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--structure", "pyramid",
-            "--layers", "1", "--out", str(out), "--quiet", *extra]
+    return [
+        sys.executable,
+        "-m",
+        "pyramid_sim.cli",
+        "sweep",
+        "--structure",
+        "pyramid",
+        "--layers",
+        "1",
+        "--out",
+        str(out),
+        "--quiet",
+        *extra,
+    ]
 
 
 def _csv_rows(path: Path) -> list[dict]:
@@ -179,14 +203,21 @@ def test_ray_gives_the_same_rows_as_processes(tmp_path):
     with tempfile.TemporaryDirectory(prefix="ray", dir="/tmp") as ray_tmp:
         env["RAY_TMPDIR"] = ray_tmp
         for backend in ("process", "ray"):
-            done = subprocess.run(_sweep_cmd(tmp_path / backend, *grid, "--backend", backend),
-                                  capture_output=True, text=True, timeout=600, env=env)
+            done = subprocess.run(
+                _sweep_cmd(tmp_path / backend, *grid, "--backend", backend),
+                capture_output=True,
+                text=True,
+                timeout=600,
+                env=env,
+            )
             assert done.returncode == 0, done.stderr
     rows = {}
     for backend in ("process", "ray"):
         table = _csv_rows(tmp_path / backend / "sweep.csv")
-        rows[backend] = sorted(({k: v for k, v in r.items() if k != "wall_time_s"} for r in table),
-                               key=lambda r: float(r["grip_force"]))
+        rows[backend] = sorted(
+            ({k: v for k, v in r.items() if k != "wall_time_s"} for r in table),
+            key=lambda r: float(r["grip_force"]),
+        )
     assert len(rows["ray"]) == 2
     assert rows["ray"] == rows["process"]
     assert [r["success"] for r in rows["ray"]] == ["false", "true"]  # outcomes differ: 1 N drops
@@ -195,20 +226,24 @@ def test_ray_gives_the_same_rows_as_processes(tmp_path):
 def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
     """2 mu F / g: 20 N a pad at pad friction 1 holds 4.08 kg at rest; the map with grip
     force and brick mass on its axes draws that line over the cells."""
-    from pyramid_sim.sweep.report import coulomb_mass_limit
+    from pyramid_sim.sweep.heatmaps import coulomb_mass_limit
 
     assert coulomb_mass_limit(20.0, 1.0) == pytest.approx(4.077, abs=1e-3)
-    config = SweepConfig(axes=(parse_axis("grip_force", "2:20:3"), parse_axis("brick_mass", "0.5,1")))
+    config = SweepConfig(
+        axes=(parse_axis("grip_force", "2:20:3"), parse_axis("brick_mass", "0.5,1"))
+    )
     rows = [SweepRow.of(row) for row in _spec_rows(config)]
     write_heatmaps(rows, config, tmp_path / "map.png")
     assert (tmp_path / "map.png").stat().st_size > 10_000
 
 
 def test_a_refused_ray_connection_says_what_to_set(monkeypatch):
-    from pyramid_sim.sweep.backends import ray_connection_advice
+    from pyramid_sim.sweep.ray_backend import ray_connection_advice
 
     monkeypatch.delenv("RAY_AUTH_MODE", raising=False)
-    text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect to Ray cluster"))
+    text = ray_connection_advice(
+        "127.0.0.1:6390", ConnectionError("Failed to connect to Ray cluster")
+    )
     assert "127.0.0.1:6390" in text and "set RAY_AUTH_MODE=token" in text
     monkeypatch.setenv("RAY_AUTH_MODE", "token")
     text = ray_connection_advice("127.0.0.1:6390", ConnectionError("Failed to connect"))
@@ -222,8 +257,18 @@ def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
     out = tmp_path / "both"
     grid = ["--structure", "pyramid-even", "--layers", "2", "--friction", "0.8", "--workers", "2"]
     for schedule in ("lockstep", "overlap"):
-        cmd = [sys.executable, "-m", "pyramid_sim.cli", "sweep", "--out", str(out), "--quiet",
-               *grid, "--schedule", schedule]
+        cmd = [
+            sys.executable,
+            "-m",
+            "pyramid_sim.cli",
+            "sweep",
+            "--out",
+            str(out),
+            "--quiet",
+            *grid,
+            "--schedule",
+            schedule,
+        ]
         done = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
         assert done.returncode == 0, done.stderr
     rows = {r["schedule"]: r for r in _csv_rows(out / "sweep.csv")}
@@ -232,14 +277,16 @@ def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
     assert float(rows["overlap"]["sim_time_s"]) < 0.75 * float(rows["lockstep"]["sim_time_s"])
 
 
-@pytest.mark.parametrize("raised, shown", [(None, True), (ConnectionError, False), (RuntimeError, True)])
+@pytest.mark.parametrize(
+    "raised, shown", [(None, True), (ConnectionError, False), (RuntimeError, True)]
+)
 def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, raised, shown):
     """Output written straight to file descriptor 2 while connecting (as Ray's C++ core does)
     is dropped when the cluster refuses the connection, and passed on otherwise."""
-    from pyramid_sim.sweep import backends
+    from pyramid_sim.sweep import ray_backend
 
     try:
-        with backends.native_stderr_held(True):
+        with ray_backend.native_stderr_held(True):
             os.write(2, b"native retry warning\n")
             if raised is not None:
                 raise raised("refused" if raised is ConnectionError else "other")
@@ -252,8 +299,14 @@ def _swept(out: Path, config: SweepConfig, **results) -> list[dict]:
     """The grid's runs appended to `out/sweep.csv` as finished builds; their rows as text."""
     store = SweepStore(out / "sweep.csv")
     for spec in config.runs():
-        store.append(make_row(spec, 1.0, None, **{"success": True, "worst_error_xy_mm": 1.5,
-                                                  "max_slip_mm": 0.8, **results}))
+        store.append(
+            make_row(
+                spec,
+                1.0,
+                None,
+                **{"success": True, "worst_error_xy_mm": 1.5, "max_slip_mm": 0.8, **results},
+            )
+        )
     return grid_rows(store.rows, config)
 
 
@@ -319,16 +372,21 @@ def test_a_groups_plot_draws_every_run_of_it_in_the_folder_and_no_other():
     fine = SweepConfig(axes=(parse_axis("friction", "0.7,0.8"),))
     held = SweepConfig(axes=(parse_axis("friction", "0.5,1"), parse_axis("brick_mass", "0.8")))
     other = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), structure=StructureSpec("wall"))
-    rows = [SweepRow.of(make_row(spec, 1.0, None))
-            for config in (coarse, fine, held, other) for spec in config.runs()]
+    rows = [
+        SweepRow.of(make_row(spec, 1.0, None))
+        for config in (coarse, fine, held, other)
+        for spec in config.runs()
+    ]
     assert sorted(r["friction"] for r in group_rows(rows, fine)) == ["0.5", "0.7", "0.8", "1.0"]
     assert [r["brick_mass"] for r in group_rows(rows, held)] == ["0.8", "0.8"]
 
 
 def test_a_value_no_run_measured_is_n_a_never_a_dash(tmp_path):
     config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
-    rows = [SweepRow.of(make_row(spec, 1.0, "dropped at the spot", success=False))
-            for spec in config.runs()]
+    rows = [
+        SweepRow.of(make_row(spec, 1.0, "dropped at the spot", success=False))
+        for spec in config.runs()
+    ]
     table = summary_table(rows, config)
     cells = [c for line in table.splitlines()[1:] for c in line.split("  ") if c.strip()]
     assert "n/a" in table and "-" not in [c.strip() for c in cells] and " - " not in table
@@ -348,8 +406,10 @@ def test_a_sweep_png_not_drawn_by_a_sweep_is_left_alone(tmp_path):
 
 def test_a_sweep_row_reads_its_cells_typed(tmp_path):
     config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),))
-    ok, crashed = (make_row(spec, 1.0, reason, success=reason is None, max_slip_mm=0.8)
-                   for spec, reason in zip(config.runs(), (None, "crashed: ValueError: x")))
+    ok, crashed = (
+        make_row(spec, 1.0, reason, success=reason is None, max_slip_mm=0.8)
+        for spec, reason in zip(config.runs(), (None, "crashed: ValueError: x"))
+    )
     store = SweepStore(tmp_path / "sweep.csv")
     store.append(ok)
     store.append(crashed)

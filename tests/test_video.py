@@ -14,16 +14,46 @@ pytestmark = pytest.mark.physics
 def _run(args, tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
     return subprocess.run(
-        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers", "1",
-         "--quiet", *args], capture_output=True, text=True, env=env, cwd=tmp_path, timeout=600,
+        [
+            sys.executable,
+            "-m",
+            "pyramid_sim.cli",
+            "build",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "1",
+            "--quiet",
+            *args,
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=600,
     )
 
 
 def test_video_frames_match_sim_time_and_show_the_build(tmp_path):
     import imageio.v2 as imageio
 
-    proc = _run(["--out", "a", "--video", "a/build.mp4", "--fps", "20", "--video-width", "320",
-                 "--video-height", "240", "--snapshot", "a/final.png"], tmp_path)
+    proc = _run(
+        [
+            "--out",
+            "a",
+            "--video",
+            "a/build.mp4",
+            "--fps",
+            "20",
+            "--video-width",
+            "320",
+            "--video-height",
+            "240",
+            "--snapshot",
+            "a/final.png",
+        ],
+        tmp_path,
+    )
     assert proc.returncode == 0, proc.stderr
     assert "a/result.json, a/build.mp4, a/final.png" in proc.stdout  # the summary names each
     doc = json.loads((tmp_path / "a" / "result.json").read_text())
@@ -68,9 +98,25 @@ def test_a_terminated_run_leaves_no_video_behind(tmp_path):
 
     env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
     proc = subprocess.Popen(
-        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers",
-         "2", "--quiet", "--out", "t", "--video", "t/build.mp4"],
-        env=env, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        [
+            sys.executable,
+            "-m",
+            "pyramid_sim.cli",
+            "build",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "2",
+            "--quiet",
+            "--out",
+            "t",
+            "--video",
+            "t/build.mp4",
+        ],
+        env=env,
+        cwd=tmp_path,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
     )
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and not list((tmp_path / "t").glob(".build.*")):
@@ -121,9 +167,26 @@ def test_ctrl_c_ends_a_build_in_one_line_leaving_nothing_behind(tmp_path):
 
     env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
     proc = subprocess.Popen(
-        [sys.executable, "-m", "pyramid_sim.cli", "build", "--structure", "pyramid", "--layers",
-         "2", "--quiet", "--out", "i/run", "--video", "i/run/build.mp4"],
-        env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        [
+            sys.executable,
+            "-m",
+            "pyramid_sim.cli",
+            "build",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "2",
+            "--quiet",
+            "--out",
+            "i/run",
+            "--video",
+            "i/run/build.mp4",
+        ],
+        env=env,
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
         # Ctrl-C as a terminal gives it, even under a runner that ignores SIGINT (inherited)
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
@@ -142,8 +205,23 @@ def test_speedup_films_k_simulated_seconds_a_second(tmp_path):
     """--speedup 4 at 20 fps: a frame every 0.2 simulated seconds, a quarter of the frames."""
     import imageio.v2 as imageio
 
-    proc = _run(["--out", "s", "--video", "s/fast.mp4", "--fps", "20", "--speedup", "4",
-                 "--video-width", "160", "--video-height", "120"], tmp_path)
+    proc = _run(
+        [
+            "--out",
+            "s",
+            "--video",
+            "s/fast.mp4",
+            "--fps",
+            "20",
+            "--speedup",
+            "4",
+            "--video-width",
+            "160",
+            "--video-height",
+            "120",
+        ],
+        tmp_path,
+    )
     assert proc.returncode == 0, proc.stderr
     doc = json.loads((tmp_path / "s" / "result.json").read_text())
     frames = sum(1 for _ in imageio.get_reader(tmp_path / "s" / "fast.mp4"))

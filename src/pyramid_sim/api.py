@@ -73,7 +73,12 @@ def structure(
         table_z = config.layout.table_top_z + config.brick.height / 2
         targets = load_goals(Path(goals), config.brick, table_z)
     return StructureSpec(
-        name, layers=layers, bricks=bricks, width=width, towers=towers, goals=targets,
+        name,
+        layers=layers,
+        bricks=bricks,
+        width=width,
+        towers=towers,
+        goals=targets,
         goals_source=Path(goals).name if goals is not None else "",
     )
 
@@ -92,7 +97,10 @@ def _resolve(
 
 
 def plan(
-    name: str = "pyramid-even", *, arms: ArmChoice = "both", config: SimConfig | None = None,
+    name: str = "pyramid-even",
+    *,
+    arms: ArmChoice = "both",
+    config: SimConfig | None = None,
     **options: Any,
 ) -> Plan:
     """The build plan: every brick's target, arm and order, and the spawn pose. `options` are
@@ -131,7 +139,8 @@ def build(
 
     vc = video_config or VideoConfig()
     return run_build(
-        prepare(spec, config, arms), config,
+        prepare(spec, config, arms),
+        config,
         video=(vc, Path(video)) if video is not None else None,
         snapshot=(vc, Path(snapshot)) if snapshot is not None else None,
     )

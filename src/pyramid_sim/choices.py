@@ -18,6 +18,14 @@ ROBOT_NAMES: tuple[RobotName, ...] = get_args(RobotName)
 CAMERAS: tuple[Camera, ...] = get_args(Camera)
 
 __all__ = [
-    "ARMS", "ARM_CHOICES", "CAMERAS", "ROBOT_NAMES", "SCHEDULES", "Arm", "ArmChoice", "Camera",
-    "RobotName", "Schedule",
+    "ARMS",
+    "ARM_CHOICES",
+    "CAMERAS",
+    "ROBOT_NAMES",
+    "SCHEDULES",
+    "Arm",
+    "ArmChoice",
+    "Camera",
+    "RobotName",
+    "Schedule",
 ]

@@ -23,7 +23,9 @@ DROP_MM = DROP_DISTANCE * 1000.0  # so a slip is measured only short of it
 def check_count(name: str, value: int, low: int, high: int) -> None:
     """Raise ConfigError unless `value` is a whole number from low to high."""
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-        raise ConfigError(f"{name}: {value!r} is out of range; accepted {low} to {high}, whole numbers")
+        raise ConfigError(
+            f"{name}: {value!r} is out of range; accepted {low} to {high}, whole numbers"
+        )
 
 
 @dataclass(frozen=True)
@@ -133,7 +135,9 @@ class SimConfig:
     def __post_init__(self) -> None:
         robot(self.robot)  # refuses an unknown preset, naming those there are
         if self.schedule not in SCHEDULES:
-            raise ConfigError(f"schedule: unknown {self.schedule!r}; accepted {', '.join(SCHEDULES)}")
+            raise ConfigError(
+                f"schedule: unknown {self.schedule!r}; accepted {', '.join(SCHEDULES)}"
+            )
         check_range("timestep", self.timestep, 0.0005, 0.004)
         check_range("settle time", self.settle_time, 0.0, 10.0)
         check_range("max sim time", self.max_sim_time, 1.0, 36000.0)
@@ -162,7 +166,8 @@ class SimConfig:
         records these."""
         preset, m = robot(self.robot), self.motion
         return replace(
-            m, speed=min(m.speed, preset.max_speed),
+            m,
+            speed=min(m.speed, preset.max_speed),
             slow_speed=min(m.slow_speed, preset.max_slow_speed),
             turn_rate=min(m.turn_rate, preset.max_turn_rate),
         )
@@ -176,8 +181,6 @@ class SimConfig:
     def substeps(self) -> int:
         """Physics steps per control step."""
         return int(round(self.motion.control_dt / self.timestep))
-
-
 
 
 @dataclass(frozen=True)

@@ -58,14 +58,54 @@ class Param:
 
 
 PARAMS: tuple[Param, ...] = (
-    Param("friction", "brick friction", "", "brick", "friction", 1.0, 0.0, 5.0, True,
-          "sliding friction of the brick geoms"),
-    Param("brick_mass", "brick mass (kg)", "kg", "brick", "mass", 0.5, 0.0, 5.0, True,
-          "mass of each brick"),
-    Param("grip_force", "grip force (N)", "N", "gripper", "force", 20.0, 0.0, 140.0, True,
-          "squeeze of each finger pad (the gripper actuator's force limit)"),
-    Param("pad_friction", "pad friction", "", "gripper", "pad_friction", 1.0, 0.0, 5.0, True,
-          "sliding friction of the finger pads"),
+    Param(
+        "friction",
+        "brick friction",
+        "",
+        "brick",
+        "friction",
+        1.0,
+        0.0,
+        5.0,
+        True,
+        "sliding friction of the brick geoms",
+    ),
+    Param(
+        "brick_mass",
+        "brick mass (kg)",
+        "kg",
+        "brick",
+        "mass",
+        0.5,
+        0.0,
+        5.0,
+        True,
+        "mass of each brick",
+    ),
+    Param(
+        "grip_force",
+        "grip force (N)",
+        "N",
+        "gripper",
+        "force",
+        20.0,
+        0.0,
+        140.0,
+        True,
+        "squeeze of each finger pad (the gripper actuator's force limit)",
+    ),
+    Param(
+        "pad_friction",
+        "pad friction",
+        "",
+        "gripper",
+        "pad_friction",
+        1.0,
+        0.0,
+        5.0,
+        True,
+        "sliding friction of the finger pads",
+    ),
 )
 BY_NAME = {p.name: p for p in PARAMS}
 
@@ -89,9 +129,7 @@ def check_section(section: str, settings: Any) -> None:
             p.check(getattr(settings, p.field))
 
 
-def check_range(
-    name: str, value: Any, low: float, high: float, *, low_open: bool = False
-) -> None:
+def check_range(name: str, value: Any, low: float, high: float, *, low_open: bool = False) -> None:
     """Raise ConfigError unless low <= value <= high (low < value when low_open)."""
     span = f"{'(' if low_open else '['}{low:g}, {high:g}]"
     if isinstance(value, bool) or not isinstance(value, (int, float)):

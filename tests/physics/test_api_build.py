@@ -39,8 +39,14 @@ def test_rendering_without_opengl_is_refused_before_any_physics(tmp_path):
     )
     for backend in ("glfw", "osmesa"):  # no display for GLFW; no libOSMesa on these machines
         env = {"MUJOCO_GL": backend, "PATH": "/usr/bin:/bin"}
-        proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                              env=env, cwd=tmp_path, timeout=120)
+        proc = subprocess.run(
+            [sys.executable, "-c", code],
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=tmp_path,
+            timeout=120,
+        )
         assert proc.returncode == 0 and proc.stdout.startswith("video:"), proc.stderr
     assert not list(tmp_path.glob("*.mp4"))
 
@@ -55,8 +61,14 @@ def test_a_build_that_does_not_render_leaves_a_later_one_able_to(tmp_path):
         "print(result.success)\n"
     )
     env = {"PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}  # no MUJOCO_GL
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          env=env, cwd=tmp_path, timeout=300)
+    proc = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
+    )
     assert proc.returncode == 0 and proc.stdout.strip() == "True", proc.stderr
     assert (tmp_path / "s.png").stat().st_size > 1000
 
@@ -64,8 +76,21 @@ def test_a_build_that_does_not_render_leaves_a_later_one_able_to(tmp_path):
 def test_a_result_saves_exactly_the_text_the_command_line_writes(tmp_path):
     from pyramid_sim.cli import main
 
-    assert main(["build", "--structure", "pyramid", "--layers", "1", "--quiet",
-                 "--out", str(tmp_path / "cli")]) == 0
+    assert (
+        main(
+            [
+                "build",
+                "--structure",
+                "pyramid",
+                "--layers",
+                "1",
+                "--quiet",
+                "--out",
+                str(tmp_path / "cli"),
+            ]
+        )
+        == 0
+    )
     written = (tmp_path / "cli" / "result.json").read_text()
     result = pyramid_sim.build("pyramid", layers=1)
     result.save(tmp_path / "api.json")
@@ -75,7 +100,8 @@ def test_a_result_saves_exactly_the_text_the_command_line_writes(tmp_path):
     clock = ("wall_time_s", "real_time_factor")
     cli_doc, api_doc = json.loads(written), json.loads(saved)
     assert {k: v for k, v in cli_doc.items() if k not in clock} == {
-        k: v for k, v in api_doc.items() if k not in clock}
+        k: v for k, v in api_doc.items() if k not in clock
+    }
     assert list(cli_doc) == list(api_doc)  # the same fields in the same order
 
 
@@ -91,8 +117,14 @@ def test_mujoco_imported_first_still_renders_headless(tmp_path):
         "print(r.success, r.video.frames)\n"
     )
     env = {"PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}  # no MUJOCO_GL, no DISPLAY
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          env=env, cwd=tmp_path, timeout=300)
+    proc = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
+    )
     assert proc.returncode == 0, proc.stderr
     success, frames = proc.stdout.split()
     assert success == "True" and int(frames) > 10, proc.stdout

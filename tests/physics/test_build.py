@@ -96,7 +96,9 @@ def test_a_dropped_brick_in_the_spawn_spots_way_ends_the_build_at_once_with_its_
     def knock(data):
         carry, step = loop.custody.carry["left"], loop.step_of("left")
         if carry is not None and step is not None and step.name == "clear":
-            teleport(loop, data, carry.slot, (0.49, -0.12, 0.111))  # on the table, 13 cm off the spot
+            teleport(
+                loop, data, carry.slot, (0.49, -0.12, 0.111)
+            )  # on the table, 13 cm off the spot
             knocked.append(data.time)
 
     result = judge(loop.run(BuildHooks(on_step=knock)), config)
@@ -160,7 +162,9 @@ def _brick_manager_spec(name: str) -> StructureSpec:
         from pyramid_sim.core.goals import load_goals
 
         config = SimConfig()
-        goals = load_goals(SEED_FIVE, config.brick, config.layout.table_top_z + config.brick.height / 2)
+        goals = load_goals(
+            SEED_FIVE, config.brick, config.layout.table_top_z + config.brick.height / 2
+        )
         return StructureSpec("list", goals=goals, goals_source=SEED_FIVE.name)
     return StructureSpec(name)
 
@@ -168,12 +172,18 @@ def _brick_manager_spec(name: str) -> StructureSpec:
 @pytest.mark.parametrize(
     "name, arms",
     [
-        ("wall", "both"), ("wall", "left"),
-        ("wall-pyramid", "both"), ("wall-pyramid", "right"),
-        ("towers", "both"), ("towers", "right"),
-        ("list", "both"), ("list", "left"),
-        ("pyramid", "left"), ("pyramid-even", "left"),
-        ("corner-wall", "both"), ("corner-wall", "left"),
+        ("wall", "both"),
+        ("wall", "left"),
+        ("wall-pyramid", "both"),
+        ("wall-pyramid", "right"),
+        ("towers", "both"),
+        ("towers", "right"),
+        ("list", "both"),
+        ("list", "left"),
+        ("pyramid", "left"),
+        ("pyramid-even", "left"),
+        ("corner-wall", "both"),
+        ("corner-wall", "left"),
     ],
 )
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):

@@ -44,11 +44,14 @@ def test_no_collision_geometry_of_the_robot_is_drawn(robot):
     colliding = [g for g in geoms if model.geom_contype[g] or model.geom_conaffinity[g]]
     drawn = [g for g in geoms if shown[model.geom_group[g]] and model.geom_rgba[g, 3] > 0]
     assert colliding and drawn
-    assert not set(colliding) & set(drawn), [model.geom(g).name for g in set(colliding) & set(drawn)]
+    assert not set(colliding) & set(drawn), [
+        model.geom(g).name for g in set(colliding) & set(drawn)
+    ]
     if robot == "panda":  # its visual meshes, in the colours of the real arm
         colours = {tuple(np.round(model.geom_rgba[g], 2)) for g in drawn}
-        assert len(colours) >= 4 and all(model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
-                                         for g in drawn)
+        assert len(colours) >= 4 and all(
+            model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH for g in drawn
+        )
 
 
 def test_the_visual_meshes_weigh_nothing():
@@ -61,8 +64,11 @@ def test_the_visual_meshes_weigh_nothing():
     drawn = [g for g in range(model.ngeom) if model.geom_group[g] == 2]
     assert drawn and all(model.geom_contype[g] == model.geom_conaffinity[g] == 0 for g in drawn)
     urdf = ET.parse(robots_dir() / "panda_description" / "urdf" / "panda.urdf").getroot()
-    masses = {link.get("name"): float(link.find("inertial/mass").get("value"))
-              for link in urdf.iter("link") if link.find("inertial/mass") is not None}
+    masses = {
+        link.get("name"): float(link.find("inertial/mass").get("value"))
+        for link in urdf.iter("link")
+        if link.find("inertial/mass") is not None
+    }
     assert len(masses) >= 10
     for link, mass in masses.items():
         assert model.body_mass[model.body(f"left/{link}").id] == pytest.approx(mass), link

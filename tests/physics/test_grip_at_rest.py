@@ -27,10 +27,12 @@ def _drop_mm(mass: float, force: float, pad_friction: float) -> float:
     for side in (1, -1):
         body = spec.worldbody.add_body(name=f"pad{side}", pos=[0.0, side * (half + 0.006), 1.0])
         body.add_joint(name=f"slide{side}", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, -side, 0])
-        pads.append(body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.02, 0.005, 0.02],
-                                  mass=0.02))
-        act = spec.add_actuator(name=f"press{side}", target=f"slide{side}",
-                                trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        pads.append(
+            body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.02, 0.005, 0.02], mass=0.02)
+        )
+        act = spec.add_actuator(
+            name=f"press{side}", target=f"slide{side}", trntype=mujoco.mjtTrn.mjTRN_JOINT
+        )
         act.set_to_position(kp=grip.stiffness, kv=40.0)
         act.forcerange = [-force, force]
         act.forcelimited = True

@@ -39,7 +39,9 @@ def test_a_magazine_left_alone_does_not_move():
     start = np.array([data.qpos[q : q + 3] for q in handles.brick_qpos])
     for _ in range(250):
         mujoco.mj_step(model, data)
-    moved = np.linalg.norm(np.array([data.qpos[q : q + 3] for q in handles.brick_qpos]) - start, axis=1)
+    moved = np.linalg.norm(
+        np.array([data.qpos[q : q + 3] for q in handles.brick_qpos]) - start, axis=1
+    )
     assert moved.max() < 1e-3, moved.max()
 
 
@@ -75,13 +77,19 @@ def test_gravity_compensation_is_the_servos_and_counts_in_the_torque_measured():
     for q in arms:
         data.qpos[q] = PANDA.arms["left"].home
     data.ctrl[np.concatenate([handles.arm_actuators[a] for a in c.ARMS])] = np.concatenate(
-        [data.qpos[q] for q in arms])
+        [data.qpos[q] for q in arms]
+    )
     mujoco.mj_forward(model, data)
     dofs = np.concatenate([handles.arm_dofs[a] for a in c.ARMS])
-    monitor = StepMonitor(model, data, dofs, np.concatenate(arms),
-                          np.concatenate([handles.arm_actuators[a] for a in c.ARMS]),
-                          np.concatenate([handles.finger_qpos[a] for a in c.ARMS]),
-                          joint_limits(model, PANDA))
+    monitor = StepMonitor(
+        model,
+        data,
+        dofs,
+        np.concatenate(arms),
+        np.concatenate([handles.arm_actuators[a] for a in c.ARMS]),
+        np.concatenate([handles.finger_qpos[a] for a in c.ARMS]),
+        joint_limits(model, PANDA),
+    )
     monitor.record()
     monitor.flush()
     expected = np.abs(data.qfrc_gravcomp[dofs]) / np.tile(PANDA.arms["left"].torque_limits, 2)
@@ -109,8 +117,11 @@ def test_the_swept_friction_is_the_friction_of_every_brick_contact_and_pads_keep
     """Read from the contacts MuJoCo made: brick-brick and brick-table at --friction 0.4, the
     pads at their own 1.3."""
     base = SimConfig()
-    config = replace(base, brick=replace(base.brick, friction=0.4),
-                     gripper=replace(base.gripper, pad_friction=1.3))
+    config = replace(
+        base,
+        brick=replace(base.brick, friction=0.4),
+        gripper=replace(base.gripper, pad_friction=1.3),
+    )
     loop = _loop(config, layers=2)
     m = loop.model
     brick_geoms = {int(m.body_geomadr[b]) for b in loop.handles.brick_body}
@@ -122,9 +133,15 @@ def test_the_swept_friction_is_the_friction_of_every_brick_contact_and_pads_keep
         for i in range(data.ncon):
             con = data.contact[i]
             pair = {int(con.geom1), int(con.geom2)}
-            kind = ("brick_brick" if pair <= brick_geoms else "brick_table" if table in pair
-                    and pair & brick_geoms else "pad_brick" if pair & pads and pair & brick_geoms
-                    else None)
+            kind = (
+                "brick_brick"
+                if pair <= brick_geoms
+                else "brick_table"
+                if table in pair and pair & brick_geoms
+                else "pad_brick"
+                if pair & pads and pair & brick_geoms
+                else None
+            )
             if kind:
                 seen[kind].add(round(float(con.friction[0]), 9))
 
@@ -188,8 +205,14 @@ def test_the_spawn_spot_check_sees_every_link_of_both_arms():
     from pyramid_sim.physics.clearance import arm_geoms
 
     model = build_scene(SimConfig(), 1).model
-    spawner = Spawner(model, PANDA, SceneHandles(model, PANDA, 1), pyramid_sim.plan().spawn, clearance=0.02,
-                      arm_clearance=0.1)
+    spawner = Spawner(
+        model,
+        PANDA,
+        SceneHandles(model, PANDA, 1),
+        pyramid_sim.plan().spawn,
+        clearance=0.02,
+        arm_clearance=0.1,
+    )
     links = {model.geom_bodyid[g] for g in spawner.arm_geoms}
     for arm in c.ARMS:
         assert set(arm_geoms(model, PANDA.arms[arm])) <= set(spawner.arm_geoms)

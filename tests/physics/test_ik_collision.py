@@ -22,16 +22,20 @@ def _closest_approach_when_both_hands_aim_at_one_point(min_distance: float) -> f
     for arm in c.ARMS:
         ik.solve(arm, clear_pose(arm, PANDA))
     model, data = ik.model, ik.configuration.data
-    pairs = [(a, b) for a in arm_geoms(model, PANDA.arms["left"], PANDA.arms["left"].guarded_bodies)
-             for b in arm_geoms(model, PANDA.arms["right"], PANDA.arms["right"].guarded_bodies)]
+    pairs = [
+        (a, b)
+        for a in arm_geoms(model, PANDA.arms["left"], PANDA.arms["left"].guarded_bodies)
+        for b in arm_geoms(model, PANDA.arms["right"], PANDA.arms["right"].guarded_bodies)
+    ]
     fromto = np.zeros(6)
     for arm in c.ARMS:
         ik.set_target(arm, Pose(0.5, 0.0, 0.3, 0.0))
     closest = np.inf
     for _ in range(300):
         ik.step()
-        closest = min(closest, *(mujoco.mj_geomDistance(model, data, a, b, 1.0, fromto)
-                                 for a, b in pairs))
+        closest = min(
+            closest, *(mujoco.mj_geomDistance(model, data, a, b, 1.0, fromto) for a, b in pairs)
+        )
     return closest
 
 

@@ -29,8 +29,15 @@ def _ik_at(
         q[model.jnt_qposadr[j]] = rng.uniform(low[j], high[j]) if model.jnt_limited[j] else 0.0
     ik.configuration.update(q)
     for arm in c.ARMS:
-        ik.set_target(arm, Pose(rng.uniform(0.3, 0.7), rng.uniform(-0.4, 0.4), rng.uniform(0.1, 0.4),
-                                rng.uniform(-np.pi, np.pi)))
+        ik.set_target(
+            arm,
+            Pose(
+                rng.uniform(0.3, 0.7),
+                rng.uniform(-0.4, 0.4),
+                rng.uniform(0.1, 0.4),
+                rng.uniform(-np.pi, np.pi),
+            ),
+        )
     return ik
 
 
@@ -90,8 +97,9 @@ def test_the_qp_solution_is_minks():
     for _ in range(5):
         ik = _ik_at(rng, limit_acceleration=False)
         qp = mink.build_ik(ik.configuration, ik.task_list, ik.dt, ik.damping, ik.limits)
-        ref, _, flag, _ = daqp.solve(qp.P, qp.q, qp.G, qp.h, np.full(qp.h.size, -1e30),
-                                     np.zeros(qp.h.size, dtype=c_int))
+        ref, _, flag, _ = daqp.solve(
+            qp.P, qp.q, qp.G, qp.h, np.full(qp.h.size, -1e30), np.zeros(qp.h.size, dtype=c_int)
+        )
         assert flag > 0
         np.testing.assert_allclose(ik.solve_velocity() * ik.dt, ref, atol=1e-9)
 
@@ -110,8 +118,10 @@ def test_carried_gaps_never_rule_out_a_pair_within_reach():
             ik.set_target(arm, Pose(0.5, target_y if arm == "left" else -target_y, 0.3, 0.0))
         for _ in range(150):
             ik.step()
-            truth = min(mujoco.mj_geomDistance(model, data, int(a), int(b), 1.0, fromto)
-                        for a, b in zip(gaps.g1, gaps.g2))
+            truth = min(
+                mujoco.mj_geomDistance(model, data, int(a), int(b), 1.0, fromto)
+                for a, b in zip(gaps.g1, gaps.g2)
+            )
             if truth <= distance:
                 assert gaps.may_be_within(data, distance)
             calls += 1

@@ -36,8 +36,16 @@ def scene():
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     handles = SceneHandles(model, CONFIG.robot_description, BRICKS)
-    spawner = Spawner(model, CONFIG.robot_description, handles, PLAN.spawn, clearance=0.02,
-                      arm_clearance=0.10, jitter=0.0, seed=0)
+    spawner = Spawner(
+        model,
+        CONFIG.robot_description,
+        handles,
+        PLAN.spawn,
+        clearance=0.02,
+        arm_clearance=0.10,
+        jitter=0.0,
+        seed=0,
+    )
     return model, data, handles, spawner
 
 
@@ -50,8 +58,9 @@ def test_custody_alone_feeds_the_spot_from_the_magazine_in_order(scene):
     assert np.allclose(data.qpos[q : q + 2], [PLAN.spawn.x, PLAN.spawn.y], atol=1e-9)
     assert spawner.current == 0  # the loop feeds the spot again only once it is picked
     assert custody.needs_brick()  # one brick on the spot, two to pick
-    assert np.allclose(data.qpos[handles.brick_qpos[1] : handles.brick_qpos[1] + 3],
-                       park_position(1))  # the next still waits in the magazine
+    assert np.allclose(
+        data.qpos[handles.brick_qpos[1] : handles.brick_qpos[1] + 3], park_position(1)
+    )  # the next still waits in the magazine
 
 
 def test_dispatch_alone_hands_the_first_picks_out_by_the_schedule(scene):
@@ -141,7 +150,9 @@ def test_the_closest_approach_is_the_true_distance_from_the_first_look():
     assert parts.clearance.closest == float("inf") and parts.clearance.closest_time is None
     parts.clearance.update()
     model, data, robot, fromto = parts.model, parts.data, CONFIG.robot_description, np.zeros(6)
-    left, right = (arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies
-                             + robot.arms[a].finger_bodies) for a in c.ARMS)
+    left, right = (
+        arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies + robot.arms[a].finger_bodies)
+        for a in c.ARMS
+    )
     true = min(mujoco.mj_geomDistance(model, data, a, b, 10.0, fromto) for a in left for b in right)
     assert parts.clearance.closest == pytest.approx(true, abs=1e-9)

@@ -29,7 +29,9 @@ def _run(loop: BuildLoop, on_step) -> dict:
     return judge(loop.run(BuildHooks(on_step=on_step)), loop.config).to_dict()
 
 
-def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(teleport):
+def test_a_brick_knocked_out_of_the_hand_mid_carry_is_replaced_and_the_structure_completed(
+    teleport,
+):
     knocked, loop = [], _two_brick_build()
 
     def knock(data):  # once, while the left arm carries its brick out to its clear pose
@@ -75,8 +77,20 @@ def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_
     back on the spot it is picked again until its third drop; a few mm off, in the spot's way,
     the build ends there. Either way the reason names the brick, the step and the grip."""
     out = tmp_path / "heavy"
-    code = main(["build", "--structure", "pyramid-even", "--layers", "1", "--brick-mass", "5",
-                 "--quiet", "--out", str(out)])
+    code = main(
+        [
+            "build",
+            "--structure",
+            "pyramid-even",
+            "--layers",
+            "1",
+            "--brick-mass",
+            "5",
+            "--quiet",
+            "--out",
+            str(out),
+        ]
+    )
     doc = json.loads((out / "result.json").read_text())
     assert code == 1 and not doc["success"]
     assert "0/2 bricks in place" in (out_text := capsys.readouterr().out)
@@ -111,7 +125,9 @@ def test_a_dropped_brick_at_rest_on_the_spot_is_picked_again_and_one_in_its_way_
         assert doc["recoveries"] == 1 and doc["bricks"][0]["placed"]
         return
     reason = doc["failure_reason"]
-    assert not doc["success"] and reason.startswith("brick 0 slipped out of the left hand during 'hover'")
+    assert not doc["success"] and reason.startswith(
+        "brick 0 slipped out of the left hand during 'hover'"
+    )
     assert "in the spawn spot's way, 8.0 mm across" in reason
     assert doc["sim_time_s"] < knocked[0] + 5  # at once, not after the 60 s stall
 
@@ -138,8 +154,20 @@ TIMINGS = ("wall_time_s", "real_time_factor")
 def test_the_same_command_twice_gives_identical_results(tmp_path):
     docs = []
     for run in ("a", "b"):
-        args = ["build", "--structure", "pyramid", "--layers", "2", "--spawn-jitter", "2",
-                "--seed", "7", "--quiet", "--out", str(tmp_path / run)]
+        args = [
+            "build",
+            "--structure",
+            "pyramid",
+            "--layers",
+            "2",
+            "--spawn-jitter",
+            "2",
+            "--seed",
+            "7",
+            "--quiet",
+            "--out",
+            str(tmp_path / run),
+        ]
         main(args)
         doc = json.loads((tmp_path / run / "result.json").read_text())
         docs.append({k: v for k, v in doc.items() if k not in TIMINGS})

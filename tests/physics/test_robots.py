@@ -34,8 +34,12 @@ def _scene(name: str, bricks: int):
     """A preset's compiled scene, fresh data and handles."""
     config = SimConfig(robot=name)
     model = build_scene(config, bricks).model
-    return config, config.robot_description, model, mujoco.MjData(model), SceneHandles(
-        model, config.robot_description, bricks
+    return (
+        config,
+        config.robot_description,
+        model,
+        mujoco.MjData(model),
+        SceneHandles(model, config.robot_description, bricks),
     )
 
 
@@ -115,9 +119,15 @@ def test_an_arm_against_its_own_robot_is_counted():
     data.qpos[handles.arm_qpos["right"]] = robot.arms["right"].home
     mujoco.mj_forward(model, data)
     arms = lambda part: np.concatenate([part[a] for a in c.ARMS])  # noqa: E731
-    monitor = StepMonitor(model, data, arms(handles.arm_dofs), arms(handles.arm_qpos),
-                          arms(handles.arm_actuators), arms(handles.finger_qpos),
-                          joint_limits(model, robot))
+    monitor = StepMonitor(
+        model,
+        data,
+        arms(handles.arm_dofs),
+        arms(handles.arm_qpos),
+        arms(handles.arm_actuators),
+        arms(handles.finger_qpos),
+        joint_limits(model, robot),
+    )
     monitor.record()
     monitor.flush()
     assert monitor.arm_body_contacts > 0 and monitor.arm_arm_contacts == 0

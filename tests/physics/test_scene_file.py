@@ -16,11 +16,27 @@ pytestmark = pytest.mark.physics
 @pytest.mark.parametrize("robot", ["panda", "baxter"])
 def test_the_xml_and_its_meshes_open_after_a_move(tmp_path, capsys, robot):
     out = tmp_path / "made" / "x.xml"
-    assert main(["scene", "--structure", "pyramid", "--layers", "1", "--robot", robot,
-                 "--out", str(out)]) == 0
+    assert (
+        main(
+            [
+                "scene",
+                "--structure",
+                "pyramid",
+                "--layers",
+                "1",
+                "--robot",
+                robot,
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     line = capsys.readouterr().out.strip()
-    assert line.endswith(f"-> {out}, {tmp_path / 'made' / 'x_meshes'}/ "
-                         f"({len(list((tmp_path / 'made' / 'x_meshes').iterdir()))} mesh files)")
+    assert line.endswith(
+        f"-> {out}, {tmp_path / 'made' / 'x_meshes'}/ "
+        f"({len(list((tmp_path / 'made' / 'x_meshes').iterdir()))} mesh files)"
+    )
     files = re.findall(r'file="([^"]*)"', out.read_text())
     assert files and all(f.startswith("x_meshes/") for f in files)  # nothing absolute
     moved = tmp_path / "elsewhere"
@@ -30,5 +46,9 @@ def test_the_xml_and_its_meshes_open_after_a_move(tmp_path, capsys, robot):
     loaded = mujoco.MjModel.from_xml_path(str(moved / "x.xml"))
     config = SimConfig(robot=robot)
     compiled = build_scene(config, 1 + config.spare_bricks).model
-    assert (loaded.nbody, loaded.ngeom, loaded.nmesh) == (compiled.nbody, compiled.ngeom, compiled.nmesh)
+    assert (loaded.nbody, loaded.ngeom, loaded.nmesh) == (
+        compiled.nbody,
+        compiled.ngeom,
+        compiled.nmesh,
+    )
     assert loaded.nmesh > 0

@@ -21,8 +21,16 @@ def _spawned_positions(jitter: float, seed: int, n: int = 6) -> np.ndarray:
     scene = build_scene(config, n)
     data = mujoco.MjData(scene.model)
     handles = SceneHandles(scene.model, PANDA, n)
-    spawner = Spawner(scene.model, PANDA, handles, plan.spawn, clearance=0.02, arm_clearance=0.1,
-                      jitter=jitter, seed=seed)
+    spawner = Spawner(
+        scene.model,
+        PANDA,
+        handles,
+        plan.spawn,
+        clearance=0.02,
+        arm_clearance=0.1,
+        jitter=jitter,
+        seed=seed,
+    )
     out = []
     for _ in range(n):
         slot = spawner.spawn_next(data)

@@ -9,20 +9,27 @@ from __future__ import annotations
 import signal
 import sys
 import threading
+from collections.abc import Sequence
 from pathlib import Path
-from typing import NoReturn, Sequence
+from typing import NoReturn
 
 from ..choices import ARM_CHOICES
 from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a
 from . import commands
+from .sweep_args import add_sweep_args
+from .video_args import add_video_args
 
 EXIT_INTERRUPTED = 130  # as a shell reports a process ended by SIGINT
 
 COMMANDS = {
-    "plan": commands.cmd_plan, "build": commands.cmd_build, "view": commands.cmd_view,
-    "sweep": commands.cmd_sweep, "reach": commands.cmd_reach, "scene": commands.cmd_scene,
+    "plan": commands.cmd_plan,
+    "build": commands.cmd_build,
+    "view": commands.cmd_view,
+    "sweep": commands.cmd_sweep,
+    "reach": commands.cmd_reach,
+    "scene": commands.cmd_scene,
 }
 
 
@@ -38,25 +45,37 @@ def make_parser() -> a.Parser:
     a.add_physics_args(build)
     a.add_schedule_arg(build)
     a.add_out_args(build, Path("runs/latest"))
-    a.add_video_args(build)
+    add_video_args(build)
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     a.add_structure_args(view)
     a.add_physics_args(view)
     a.add_schedule_arg(view)
-    a.add_sweep_args(sub.add_parser(
-        "sweep", help="build at every point of a parameter grid; writes DIR/sweep.csv and a plot"
-    ))
+    add_sweep_args(
+        sub.add_parser(
+            "sweep",
+            help="build at every point of a parameter grid; writes DIR/sweep.csv and a plot",
+        )
+    )
     scene = sub.add_parser("scene", help="write the compiled scene of a build (.mjb or .xml)")
     a.add_structure_args(scene)
     a.add_physics_args(scene)
-    scene.add_argument("--out", type=Path, required=True, metavar="FILE",
-                       help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)")
+    scene.add_argument(
+        "--out",
+        type=Path,
+        required=True,
+        metavar="FILE",
+        help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",
+    )
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     a.add_robot_arg(reach)
     arm_sets = (*ARM_CHOICES, "all")
-    reach.add_argument("--arms", type=a.one_of("arms", arm_sets), default="all",
-                       metavar="|".join(arm_sets),
-                       help="the arm set to check: both, left, right, or all three (default all)")
+    reach.add_argument(
+        "--arms",
+        type=a.one_of("arms", arm_sets),
+        default="all",
+        metavar="|".join(arm_sets),
+        help="the arm set to check: both, left, right, or all three (default all)",
+    )
     return parser
 
 

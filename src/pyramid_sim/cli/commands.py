@@ -8,8 +8,8 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 from ..choices import ARM_CHOICES, ArmChoice
 from ..config import SimConfig, check_film
@@ -17,14 +17,10 @@ from ..errors import ConfigError, MachineError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from ..output.result import BuildResult
-from .args import (
-    EXIT_FAILED,
-    config_from_args,
-    spec_from_args,
-    sweep_config_from_args,
-    video_config_from_args,
-)
+from .args import EXIT_FAILED, config_from_args, spec_from_args
 from .progress import Progress
+from .sweep_args import sweep_config_from_args
+from .video_args import video_config_from_args
 
 
 def cmd_plan(args: argparse.Namespace) -> int:
@@ -66,18 +62,33 @@ def cmd_build(args: argparse.Namespace) -> int:
     plan = prepare(spec, config, args.arms)
     video = (video_config, args.video) if args.video is not None else None
     snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
-    written = [(args.out, "out"), *((p.parent, f"{p.suffix[1:].lower()} path")
-                                    for p in (args.video, args.snapshot) if p is not None)]
+    written = [
+        (args.out, "out"),
+        *(
+            (p.parent, f"{p.suffix[1:].lower()} path")
+            for p in (args.video, args.snapshot)
+            if p is not None
+        ),
+    ]
     with (
         removed_if_failed([folder for folder, _ in written]),
         holding(written),
-        Progress("bricks", len(plan.bricks), "brick", quiet=args.quiet,
-                 count_unit="frame" if video is not None else None) as progress,
+        Progress(
+            "bricks",
+            len(plan.bricks),
+            "brick",
+            quiet=args.quiet,
+            count_unit="frame" if video is not None else None,
+        ) as progress,
     ):
         progress.start()
         result = run_build(
-            plan, config, on_placed=progress.advance_to, video=video,
-            on_frame=lambda n: progress.count(), snapshot=snapshot,
+            plan,
+            config,
+            on_placed=progress.advance_to,
+            video=video,
+            on_frame=lambda n: progress.count(),
+            snapshot=snapshot,
         )
         result.save(args.out / "result.json")
     files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
@@ -128,7 +139,9 @@ def cmd_view(args: argparse.Namespace) -> int:
     try:
         viewer = mujoco.viewer.launch_passive(loop.model, loop.data)
     except Exception as err:  # no display, no GLFW
-        raise MachineError(f"view: cannot open a window ({err}); use build --video instead") from None
+        raise MachineError(
+            f"view: cannot open a window ({err}); use build --video instead"
+        ) from None
 
     def show(model: mujoco.MjModel, data: mujoco.MjData) -> None:
         ahead = data.time - (time.perf_counter() - start)
@@ -147,7 +160,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
     if config.backend == "ray":
-        from ..sweep.backends import require_ray
+        from ..sweep.ray_backend import require_ray
 
         require_ray()
     from ..physics.reach import prepare
@@ -172,8 +185,11 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         f"{args.out / 'sweep.csv'}, {plot}"
     )
     if broken:
-        print(f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
-              "their points measure nothing (see failure_reason in sweep.csv)", file=sys.stderr)
+        print(
+            f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
+            "their points measure nothing (see failure_reason in sweep.csv)",
+            file=sys.stderr,
+        )
     return 0 if len(rows) == runs and not broken else EXIT_FAILED
 
 
@@ -195,8 +211,10 @@ def cmd_scene(args: argparse.Namespace) -> int:
     with removed_if_failed([args.out.parent]):
         model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
     files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
-    print(f"{model.nbody} bodies, {model.ngeom} geoms, {model.nu} actuators, "
-          f"{len(plan.bricks) + config.spare_bricks} bricks -> {', '.join(files)}")
+    print(
+        f"{model.nbody} bodies, {model.ngeom} geoms, {model.nu} actuators, "
+        f"{len(plan.bricks) + config.spare_bricks} bricks -> {', '.join(files)}"
+    )
     return 0
 
 

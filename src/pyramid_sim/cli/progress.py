@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
 from types import TracebackType
-from typing import Any, Callable, TextIO
+from typing import Any, TextIO
 
 STEPS = 10  # plain lines for a whole run, at most (plus one for work done before, one at a stop)
 
@@ -23,8 +24,14 @@ class Progress:
     e.g. frames) that has no total of its own."""
 
     def __init__(
-        self, desc: str, total: int, unit: str, *, count_unit: str | None = None,
-        stream: TextIO | None = None, quiet: bool = False,
+        self,
+        desc: str,
+        total: int,
+        unit: str,
+        *,
+        count_unit: str | None = None,
+        stream: TextIO | None = None,
+        quiet: bool = False,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
         self.desc, self.total, self.unit, self.count_unit = desc, total, unit, count_unit
@@ -47,12 +54,21 @@ class Progress:
         if self.tty:
             from tqdm import tqdm
 
-            self._bars.append(tqdm(total=self.total, initial=done, unit=self.unit,
-                                   desc=self.desc, file=self.stream))
+            self._bars.append(
+                tqdm(
+                    total=self.total, initial=done, unit=self.unit, desc=self.desc, file=self.stream
+                )
+            )
             if self.count_unit is not None:
                 # no total, so tqdm writes the count and unit run together: spaced here
-                self._bars.append(tqdm(unit=f" {self.count_unit}", desc=f"{self.count_unit}s",
-                                       position=1, file=self.stream))
+                self._bars.append(
+                    tqdm(
+                        unit=f" {self.count_unit}",
+                        desc=f"{self.count_unit}s",
+                        position=1,
+                        file=self.stream,
+                    )
+                )
             return
         self._step = self._tenths(done)
         if done:
@@ -98,8 +114,9 @@ class Progress:
     def __enter__(self) -> Progress:
         return self
 
-    def __exit__(self, kind: type[BaseException] | None, err: BaseException | None,
-                 tb: TracebackType | None) -> None:
+    def __exit__(
+        self, kind: type[BaseException] | None, err: BaseException | None, tb: TracebackType | None
+    ) -> None:
         self.close(stopped=kind is not None)
 
     def _tenths(self, n: int) -> int:
@@ -108,8 +125,10 @@ class Progress:
     def _status(self) -> str:
         elapsed = self.clock() - (self.started or 0.0)
         done_now = self.n - self.initial
-        parts = [f"{self.n}/{self.total} {self.unit}s "
-                 f"({100 * self.n // max(self.total, 1)}%) in {duration(elapsed)}"]
+        parts = [
+            f"{self.n}/{self.total} {self.unit}s "
+            f"({100 * self.n // max(self.total, 1)}%) in {duration(elapsed)}"
+        ]
         if done_now:
             parts.append(f"{elapsed / done_now:.1f} s/{self.unit}")
         if self.count_unit is not None:

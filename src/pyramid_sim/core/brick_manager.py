@@ -25,10 +25,16 @@ def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[fl
     pyramid_seperate = []
     xnos = znos = offset = 0
     for _ in range(0, square_number):
-        pyramid_seperate.append([
-            round(bstart[0] + xnos * blength + offset * (blength / 2), 3), bstart[1],
-            round(bstart[2] + znos * bheight, 3), bstart[3], bstart[4], bstart[5],
-        ])
+        pyramid_seperate.append(
+            [
+                round(bstart[0] + xnos * blength + offset * (blength / 2), 3),
+                bstart[1],
+                round(bstart[2] + znos * bheight, 3),
+                bstart[3],
+                bstart[4],
+                bstart[5],
+            ]
+        )
         if xnos < wall_base_width - 1:
             xnos += 1
         else:
@@ -100,7 +106,9 @@ def wall_pyramid(
     pitch = brick.length + SEED_WALL_TOLERANCE
     y0 = start[1] - (width - 1) * pitch / 2
     return tuple(
-        BrickTarget(Pose(x, y0 + (i + course / 2) * pitch, z0 + course * brick.height, math.pi / 2), course)
+        BrickTarget(
+            Pose(x, y0 + (i + course / 2) * pitch, z0 + course * brick.height, math.pi / 2), course
+        )
         for course in range(layers)
         for i in range(width - course)
     )

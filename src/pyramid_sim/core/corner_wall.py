@@ -38,7 +38,9 @@ U_AXIS = (math.cos(-math.pi / 4), math.sin(-math.pi / 4))
 V_AXIS = (math.cos(math.pi / 4), math.sin(math.pi / 4))
 
 
-def corner_courses(bricks: int, width: int, brick: BrickConfig) -> list[list[tuple[float, float, int]]]:
+def corner_courses(
+    bricks: int, width: int, brick: BrickConfig
+) -> list[list[tuple[float, float, int]]]:
     """The courses as (u, v, leg) in the corner's own frame: the outer vertex at the origin,
     leg 0 running along -u (its outer face on v = 0), leg 1 along -v (outer face on u = 0).
     Bottom course first; within a course leg 0 then leg 1, each from the corner outwards."""

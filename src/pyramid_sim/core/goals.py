@@ -58,7 +58,7 @@ def _json_rows(text: str, name: str) -> list[dict]:
     rows = doc.get("goals") if isinstance(doc, dict) else doc
     if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
         raise ConfigError(
-            f"goals: {name} must hold a list of {{x, y, z, yaw}} objects, alone or under \"goals\""
+            f'goals: {name} must hold a list of {{x, y, z, yaw}} objects, alone or under "goals"'
         )
     return rows
 
@@ -66,13 +66,13 @@ def _json_rows(text: str, name: str) -> list[dict]:
 def _csv_rows(text: str, name: str) -> list[dict]:
     reader = csv.DictReader(io.StringIO(text))
     if reader.fieldnames is None:
-        raise ConfigError(f"goals: {name} is empty; accepted a header x,y,z,yaw and one row a brick")
+        raise ConfigError(
+            f"goals: {name} is empty; accepted a header x,y,z,yaw and one row a brick"
+        )
     rows = []
     for row in reader:
         if None in row:
-            raise ConfigError(
-                f"goals: {name} row {reader.line_num - 1}: more values than columns"
-            )
+            raise ConfigError(f"goals: {name} row {reader.line_num - 1}: more values than columns")
         rows.append({k.strip(): v for k, v in row.items()})
     return rows
 
@@ -106,4 +106,3 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
         )
     pose = Pose(values["x"], values["y"], table_z + layer * brick.height, values["yaw"])
     return BrickTarget(pose, layer)
-

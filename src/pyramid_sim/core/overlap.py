@@ -13,7 +13,7 @@ its holder has finished the task it was given the zone for and the loop sees it 
 
 from __future__ import annotations
 
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 from ..choices import Arm
 from .scheduler import Action, Task, other
@@ -29,7 +29,9 @@ class OverlapScheduler:
     quick_retracts = True  # a retract begins the hand's next turn; a pick's lifts at the free speed
 
     def __init__(
-        self, left: Sequence[int], right: Sequence[int],
+        self,
+        left: Sequence[int],
+        right: Sequence[int],
         conflict: Callable[[Task, Task], bool] = lambda a, b: False,
     ) -> None:
         self._conflict = conflict  # whether two arms' tasks may not run at once
@@ -86,8 +88,10 @@ class OverlapScheduler:
             return held == task
         if other(arm) in self._inside[zone] or task.brick != self._first_waiting(zone):
             return False
-        if any(held is not None and held.arm != arm and self._conflict(task, held)
-               for held in self._holder.values()):
+        if any(
+            held is not None and held.arm != arm and self._conflict(task, held)
+            for held in self._holder.values()
+        ):
             return False
         self._holder[zone] = task
         return True

@@ -24,11 +24,11 @@ class Pose:
     def position(self) -> np.ndarray:
         return np.array([self.x, self.y, self.z])
 
-    def moved(self, dx: float = 0.0, dy: float = 0.0, dz: float = 0.0) -> "Pose":
+    def moved(self, dx: float = 0.0, dy: float = 0.0, dz: float = 0.0) -> Pose:
         """The same pose shifted by (dx, dy, dz)."""
         return Pose(self.x + dx, self.y + dy, self.z + dz, self.yaw)
 
-    def with_yaw(self, yaw: float) -> "Pose":
+    def with_yaw(self, yaw: float) -> Pose:
         return Pose(self.x, self.y, self.z, yaw)
 
 

@@ -8,9 +8,9 @@ clear = move to the arm's outer collision-clear pose.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
-from typing import Sequence
 
 from ..choices import Arm
 from ..config import MotionConfig
@@ -71,8 +71,15 @@ def pick_steps(
         retract = turned_within(grasp, retract, then_yaw, lift, motion.turn_rate)
     return [
         # Back from a place above the courses: level over to the spot, then down.
-        Step("hover", StepKind.MOVE, grasp.moved(dz=motion.hover), motion.speed,
-             enters_zone=True, transit=True, needs_brick=True),
+        Step(
+            "hover",
+            StepKind.MOVE,
+            grasp.moved(dz=motion.hover),
+            motion.speed,
+            enters_zone=True,
+            transit=True,
+            needs_brick=True,
+        ),
         Step("approach", StepKind.MOVE, grasp.moved(dz=half), motion.slow_speed),
         Step("servo", StepKind.MOVE, grasp, motion.slow_speed),
         Step("grip", StepKind.GRIP),
@@ -116,8 +123,14 @@ def clear_pose(arm: Arm, robot: RobotDescription) -> Pose:
 
 
 def standby_step(
-    arm: Arm, zones: Sequence[Zone], x: float, at: Pose, motion: MotionConfig, clearance: float,
-    bricks: Sequence[Pose] = (), reach: float = 0.0,
+    arm: Arm,
+    zones: Sequence[Zone],
+    x: float,
+    at: Pose,
+    motion: MotionConfig,
+    clearance: float,
+    bricks: Sequence[Pose] = (),
+    reach: float = 0.0,
 ) -> Step:
     """A move to wait at `x`, just outside every zone across that line on the arm's own side,
     level with `at` (the pose the arm goes on to): the overlap schedule's waiting place. It is
@@ -128,11 +141,16 @@ def standby_step(
         y = max([z.y_max for z in across], default=at.y) + clearance
     else:
         y = min([z.y_min for z in across], default=at.y) - clearance
-    z = max([at.z] + [b.z + motion.hover for b in bricks
-                      if segment_gap((b.x, b.y), (b.x, b.y), (x, y), (at.x, at.y)) < reach])
+    z = max(
+        [at.z]
+        + [
+            b.z + motion.hover
+            for b in bricks
+            if segment_gap((b.x, b.y), (b.x, b.y), (x, y), (at.x, at.y)) < reach
+        ]
+    )
     return Step("standby", StepKind.MOVE, Pose(x, y, z, at.yaw), motion.speed, transit=True)
 
 
 def clear_steps(arm: Arm, motion: MotionConfig, robot: RobotDescription) -> list[Step]:
     return [Step("clear", StepKind.MOVE, clear_pose(arm, robot), motion.speed)]
-

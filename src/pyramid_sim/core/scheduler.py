@@ -12,9 +12,9 @@ the clearing arm has reported itself outside it, so the two are never inside tog
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
-from typing import Sequence
 
 from ..choices import Arm
 

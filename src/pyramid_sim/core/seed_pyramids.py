@@ -89,7 +89,9 @@ def _layout(
 
 
 def pyramid(
-    layers: int = 4, brick: BrickConfig = BrickConfig(), start: tuple[float, float, float] = SEED_START
+    layers: int = 4,
+    brick: BrickConfig = BrickConfig(),
+    start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
     """The seed's `create_coordinates` pyramid: n, n-1, ..., 1 bricks, each layer offset by half
     a pitch from the one below, long axes pointing away from the robots (yaw 0)."""
@@ -99,7 +101,9 @@ def pyramid(
 
 
 def pyramid_even(
-    layers: int = 4, brick: BrickConfig = BrickConfig(), start: tuple[float, float, float] = SEED_START
+    layers: int = 4,
+    brick: BrickConfig = BrickConfig(),
+    start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
     """The seed's `create_coordinates_new` pyramid: 2n, 2n-2, ..., 2 bricks in columns."""
     check_layers(layers)

@@ -3,8 +3,8 @@ structure at a size (checked once, where it is made). Pure: no MuJoCo."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 from ..config import BrickConfig
 from ..errors import ConfigError
@@ -12,8 +12,16 @@ from .brick_manager import MAX_BRICKS, MAX_COURSE, towers, wall, wall_pyramid
 from .corner_wall import corner_wall
 from .seed_pyramids import MAX_LAYERS, SEED_START, BrickTarget, pyramid, pyramid_even
 
-__all__ = ["MAX_BRICKS", "MAX_COURSE", "MAX_LAYERS", "SIZE_KNOB", "SIZE_OPTIONS", "STRUCTURES",
-           "BrickTarget", "StructureSpec"]
+__all__ = [
+    "MAX_BRICKS",
+    "MAX_COURSE",
+    "MAX_LAYERS",
+    "SIZE_KNOB",
+    "SIZE_OPTIONS",
+    "STRUCTURES",
+    "BrickTarget",
+    "StructureSpec",
+]
 
 # name -> (generator, its size options with their defaults). Every generator takes its size
 # options as keywords, then the brick and the spawn spot the layout starts from; a goal list
@@ -24,7 +32,10 @@ STRUCTURES: dict[str, tuple[Callable[..., tuple[BrickTarget, ...]] | None, dict[
     "wall": (wall, {"bricks": 13, "width": 4}),  # the seed's 15 x 5: both arms only
     "wall-pyramid": (wall_pyramid, {"width": 5, "layers": 3}),
     "towers": (towers, {"towers": 4, "layers": 3}),
-    "corner-wall": (corner_wall, {"bricks": 15, "width": 5}),  # the upstream loop's, the seed's size
+    "corner-wall": (
+        corner_wall,
+        {"bricks": 15, "width": 5},
+    ),  # the upstream loop's, the seed's size
     "list": (None, {}),
 }
 SIZE_OPTIONS = ("layers", "bricks", "width", "towers")
@@ -32,8 +43,12 @@ SIZE_OPTIONS = ("layers", "bricks", "width", "towers")
 PLACED_BY_PICKUP = ("towers", "corner-wall")
 # The option `reach` grows to find the largest buildable size.
 SIZE_KNOB = {
-    "pyramid": "layers", "pyramid-even": "layers", "wall": "width", "wall-pyramid": "width",
-    "towers": "towers", "corner-wall": "width",
+    "pyramid": "layers",
+    "pyramid-even": "layers",
+    "wall": "width",
+    "wall-pyramid": "width",
+    "towers": "towers",
+    "corner-wall": "width",
 }
 
 

@@ -9,8 +9,8 @@ a hull rather than a union, is in docs/structures.md ("When a brick is supported
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Callable, Sequence
 
 import numpy as np
 
@@ -85,8 +85,10 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     def half(seq: list[tuple[float, float]]) -> list[tuple[float, float]]:
         chain: list[tuple[float, float]] = []
         for p in seq:
-            while len(chain) >= 2 and _cross(np.subtract(chain[-1], chain[-2]),
-                                             np.subtract(p, chain[-2])) <= _EPS:
+            while (
+                len(chain) >= 2
+                and _cross(np.subtract(chain[-1], chain[-2]), np.subtract(p, chain[-2])) <= _EPS
+            ):
                 chain.pop()
             chain.append(p)
         return chain
@@ -125,15 +127,21 @@ class Fault:
         mm, tol = self.distance * 1000, TOLERANCE * 1000
         names = " and ".join(label(i) for i in self.others)
         if self.kind == "overlap":
-            return (f"{names} and {label(self.index)}: the bricks overlap by {mm:.1f} mm; "
-                    f"accepted at most {tol:g} mm")
+            return (
+                f"{names} and {label(self.index)}: the bricks overlap by {mm:.1f} mm; "
+                f"accepted at most {tol:g} mm"
+            )
         if self.kind == "floats":
-            return (f"{label(self.index)}: the brick floats, {mm:.0f} mm above the table with no "
-                    f"brick placed before it under it; accepted resting on the table or on the "
-                    f"top of bricks placed before it, within {tol:g} mm")
-        return (f"{label(self.index)}: the brick would tip, its centre {mm:.1f} mm outside its "
-                f"support on {names}; accepted a centre over the convex hull of where it "
-                "touches the bricks under it")
+            return (
+                f"{label(self.index)}: the brick floats, {mm:.0f} mm above the table with no "
+                f"brick placed before it under it; accepted resting on the table or on the "
+                f"top of bricks placed before it, within {tol:g} mm"
+            )
+        return (
+            f"{label(self.index)}: the brick would tip, its centre {mm:.1f} mm outside its "
+            f"support on {names}; accepted a centre over the convex hull of where it "
+            "touches the bricks under it"
+        )
 
 
 def _contacts(poses: Sequence[Pose], i: int, brick: BrickConfig) -> list[tuple[int, np.ndarray]]:

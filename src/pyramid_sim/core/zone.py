@@ -4,8 +4,8 @@ spot and the structure; for the overlap schedule the spot and the structure apar
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -28,13 +28,21 @@ class Zone:
         return any(self.contains(p) for p in points)
 
     def meets(self, other: Zone) -> bool:
-        return (self.x_min <= other.x_max and other.x_min <= self.x_max
-                and self.y_min <= other.y_max and other.y_min <= self.y_max)
+        return (
+            self.x_min <= other.x_max
+            and other.x_min <= self.x_max
+            and self.y_min <= other.y_max
+            and other.y_min <= self.y_max
+        )
 
     def joined(self, other: Zone) -> Zone:
         """The smallest box around both."""
-        return Zone(min(self.x_min, other.x_min), max(self.x_max, other.x_max),
-                    min(self.y_min, other.y_min), max(self.y_max, other.y_max))
+        return Zone(
+            min(self.x_min, other.x_min),
+            max(self.x_max, other.x_max),
+            min(self.y_min, other.y_min),
+            max(self.y_max, other.y_max),
+        )
 
 
 def shared_zone(spawn: Pose, targets: Iterable[Pose], half_extent: float, margin: float) -> Zone:
@@ -49,9 +57,7 @@ def shared_zone(spawn: Pose, targets: Iterable[Pose], half_extent: float, margin
     )
 
 
-def footprint_zone(
-    poses: Sequence[Pose], length: float, width: float, margin: float
-) -> Zone:
+def footprint_zone(poses: Sequence[Pose], length: float, width: float, margin: float) -> Zone:
     """The box around the footprints of bricks (`length` x `width`, turned by each pose's
     yaw) at `poses`, plus `margin`."""
     xs, ys = [], []
@@ -76,7 +82,9 @@ def overlap_zones(
     return {"spot": spot, "structure": structure}
 
 
-def segment_gap(a0: Sequence[float], a1: Sequence[float], b0: Sequence[float], b1: Sequence[float]) -> float:
+def segment_gap(
+    a0: Sequence[float], a1: Sequence[float], b0: Sequence[float], b1: Sequence[float]
+) -> float:
     """The least distance in the plane (x, y) between the segments a0-a1 and b0-b1: how close
     two arms reaching from their bases (a0, b0) to their hands (a1, b1) come, seen from above."""
     p, q, r, s = (np.asarray(v, dtype=float)[:2] for v in (a0, a1, b0, b1))

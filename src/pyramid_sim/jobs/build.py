@@ -3,9 +3,10 @@ and a still of the finished structure. The physics measures; this module judges.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..config import SimConfig, VideoConfig
 from ..core.plan import Plan

@@ -37,16 +37,28 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
         target = Target(_round_all((pose.x, pose.y, pose.z), 6), round(pose.yaw, 6))  # type: ignore[arg-type]
         slip = measured.slip_mm.get(b.index)
         common: dict[str, Any] = dict(
-            index=b.index, arm=b.arm, layer=b.target.layer, target=target,
-            dropped=b.index in dropped, drops=sum(d.brick == b.index for d in measured.drops),
+            index=b.index,
+            arm=b.arm,
+            layer=b.target.layer,
+            target=target,
+            dropped=b.index in dropped,
+            drops=sum(d.brick == b.index for d in measured.drops),
             slip_mm=round(slip, 3) if slip is not None else None,
         )
         slot = measured.slot_of.get(b.index)
         if slot is None or not np.all(np.isfinite(measured.final_pos[slot])):
-            rows.append(BrickResult(
-                **common, final=None, error_xy_mm=None, error_z_mm=None, yaw_error_deg=None,
-                tilt_deg=None, knocked_off=False, placed=False,
-            ))
+            rows.append(
+                BrickResult(
+                    **common,
+                    final=None,
+                    error_xy_mm=None,
+                    error_z_mm=None,
+                    yaw_error_deg=None,
+                    tilt_deg=None,
+                    knocked_off=False,
+                    placed=False,
+                )
+            )
             continue
         pos, quat = measured.final_pos[slot], measured.final_quat[slot]
         rot = quat_to_matrix(quat)
@@ -55,14 +67,21 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
         z = round(float(err[2] * 1000), 3)
         yaw = round(math.degrees(symmetric_yaw_error(yaw_of(rot), pose.yaw)), 3)
         tilt = round(math.degrees(tilt_of(rot)), 3)
-        rows.append(BrickResult(
-            **common,
-            final=FinalPose(_round_all(pos, 6), _round_all(quat, 6)),  # type: ignore[arg-type]
-            error_xy_mm=xy, error_z_mm=z, yaw_error_deg=yaw, tilt_deg=tilt,
-            knocked_off=any(k.slot == slot for k in measured.knocks),
-            placed=xy <= tol.xy_mm and abs(z) <= tol.z_mm and yaw <= tol.yaw_deg
-            and tilt <= tol.tilt_deg,
-        ))
+        rows.append(
+            BrickResult(
+                **common,
+                final=FinalPose(_round_all(pos, 6), _round_all(quat, 6)),  # type: ignore[arg-type]
+                error_xy_mm=xy,
+                error_z_mm=z,
+                yaw_error_deg=yaw,
+                tilt_deg=tilt,
+                knocked_off=any(k.slot == slot for k in measured.knocks),
+                placed=xy <= tol.xy_mm
+                and abs(z) <= tol.z_mm
+                and yaw <= tol.yaw_deg
+                and tilt <= tol.tilt_deg,
+            )
+        )
     return tuple(rows)
 
 
@@ -90,7 +109,9 @@ def checks(
 
 
 def failure_reason(
-    measured: Measurements, bricks: tuple[BrickResult, ...], held: dict[str, bool],
+    measured: Measurements,
+    bricks: tuple[BrickResult, ...],
+    held: dict[str, bool],
     config: SimConfig,
 ) -> str | None:
     """Why the build failed, or None: the loop's own reason first, else every check that
@@ -102,7 +123,9 @@ def failure_reason(
         return None
     n = len(bricks)
     missing = [b.index for b in bricks if not b.placed]
-    problems = [f"{len(missing)} of {n} bricks not in place (build order {missing})"] if missing else []
+    problems = (
+        [f"{len(missing)} of {n} bricks not in place (build order {missing})"] if missing else []
+    )
     if missing and measured.dropped:
         problems.append(f"bricks dropped (build order {sorted(measured.dropped)})")
     if missing and measured.knocks:
@@ -110,24 +133,22 @@ def failure_reason(
     slips = [v for v in measured.slip_mm.values() if math.isfinite(v)]
     texts = {
         "slip": f"a brick slid {max(slips, default=0.0):.1f} mm in the hand, over the "
-                f"{config.slip_limit_mm:g} mm limit",
+        f"{config.slip_limit_mm:g} mm limit",
         "arm_arm_contacts": f"{measured.arm_arm_contacts} arm-arm contacts",
         "arm_body_contacts": f"{measured.arm_body_contacts} contacts of an arm with the robot's body",
         "shared_zone": f"both arms in one zone at {measured.zone_violations} control steps",
         "joint_speed": f"{joint_name(config, measured.speed_joint)} moved at "
-                       f"{measured.joint_speed_ratio:.2f} of its velocity limit "
-                       f"({joint_limit(config, measured.speed_joint, 'velocity'):g} rad/s)",
+        f"{measured.joint_speed_ratio:.2f} of its velocity limit "
+        f"({joint_limit(config, measured.speed_joint, 'velocity'):g} rad/s)",
         "joint_torque": f"{joint_name(config, measured.torque_joint)} demanded "
-                        f"{measured.joint_torque_ratio:.2f} of its torque limit "
-                        f"({joint_limit(config, measured.torque_joint, 'torque'):g} N m, servo "
-                        "and gravity compensation)",
+        f"{measured.joint_torque_ratio:.2f} of its torque limit "
+        f"({joint_limit(config, measured.torque_joint, 'torque'):g} N m, servo "
+        "and gravity compensation)",
         "finger_range": f"a finger went {measured.finger_limit_mm:.2f} mm past its joint range",
         "idle_bricks": f"a brick nobody had touched moved {measured.idle_motion_mm:.1f} mm",
     }
     problems += [text for name, text in texts.items() if not held[name]]
     return "; ".join(problems)
-
-
 
 
 def joint_name(config: SimConfig, joint: int | None) -> str:
@@ -136,7 +157,9 @@ def joint_name(config: SimConfig, joint: int | None) -> str:
     if joint is None:
         return "a joint"
     arm, k = _arm_joint(config, joint)
-    return f"the {arm} arm's joint {config.robot_description.arms[arm].joints[k].rsplit('/', 1)[-1]}"
+    return (
+        f"the {arm} arm's joint {config.robot_description.arms[arm].joints[k].rsplit('/', 1)[-1]}"
+    )
 
 
 def joint_limit(config: SimConfig, joint: int | None, kind: str) -> float:
@@ -155,7 +178,10 @@ def _arm_joint(config: SimConfig, joint: int) -> tuple[str, int]:
 def inputs_of(plan: Plan, config: SimConfig) -> BuildInputs:
     spec = plan.spec
     return BuildInputs(
-        structure=spec.name, size=dict(spec.size), arms=plan.arms, seed=config.seed,
+        structure=spec.name,
+        size=dict(spec.size),
+        arms=plan.arms,
+        seed=config.seed,
         goals_file=spec.goals_source or None,
         settings=asdict(replace(config, motion=config.hand_motion)),  # the speeds moved by
     )
@@ -190,12 +216,15 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         max_slip_mm=round(max(slips), 3) if slips else None,
         slip_limit_mm=config.slip_limit_mm,
         drops=len(measured.drops),
-        recoveries=sum(any(b.index == d.brick and b.placed for b in bricks) for d in measured.drops),
+        recoveries=sum(
+            any(b.index == d.brick and b.placed for b in bricks) for d in measured.drops
+        ),
         drop_events=tuple(measured.drops),
         knocked_off=tuple(measured.knocks),
         closest_arm_approach_mm=(  # None when the build stopped before the first look
             round(measured.closest_arm_m * 1000.0, 1)
-            if math.isfinite(measured.closest_arm_m) else None
+            if math.isfinite(measured.closest_arm_m)
+            else None
         ),
         closest_arm_approach_t_s=(
             round(measured.closest_arm_time, 3) if measured.closest_arm_time is not None else None

@@ -25,7 +25,9 @@ def context_class(backend: str) -> Any:
     try:
         module = CONTEXT_MODULES[backend.lower()]
     except KeyError:
-        raise ValueError(f"unknown GL backend {backend!r}; accepted {', '.join(CONTEXT_MODULES)}")
+        raise ValueError(
+            f"unknown GL backend {backend!r}; accepted {', '.join(CONTEXT_MODULES)}"
+        ) from None
     return importlib.import_module(module).GLContext
 
 
@@ -52,8 +54,15 @@ class HeadlessRenderer:
         if isinstance(camera, str):
             camera = self.model.camera(camera).id
         self._camera.fixedcamid = camera
-        mujoco.mjv_updateScene(self.model, data, self.option, None, self._camera,
-                               mujoco.mjtCatBit.mjCAT_ALL.value, self.scene)
+        mujoco.mjv_updateScene(
+            self.model,
+            data,
+            self.option,
+            None,
+            self._camera,
+            mujoco.mjtCatBit.mjCAT_ALL.value,
+            self.scene,
+        )
 
     def render(self) -> np.ndarray:
         """The scene as a new (height, width, 3) uint8 image, top row first."""

@@ -30,10 +30,15 @@ def check_mesh_folder(xml_path: Path) -> None:
     if not folder.exists():
         return
     if not folder.is_dir():
-        raise ConfigError(f"out: {str(folder)!r} is not a folder; accepted a new .xml name, or "
-                          "the mesh folder of an earlier scene, which is replaced")
-    foreign = sorted(p.name for p in folder.iterdir()
-                     if not p.is_file() or p.suffix.lower() not in ASSET_SUFFIXES)
+        raise ConfigError(
+            f"out: {str(folder)!r} is not a folder; accepted a new .xml name, or "
+            "the mesh folder of an earlier scene, which is replaced"
+        )
+    foreign = sorted(
+        p.name
+        for p in folder.iterdir()
+        if not p.is_file() or p.suffix.lower() not in ASSET_SUFFIXES
+    )
     if foreign:
         raise ConfigError(
             f"out: {str(folder)!r} holds other things than meshes ({', '.join(foreign[:3])}); "

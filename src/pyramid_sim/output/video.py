@@ -9,9 +9,9 @@ from __future__ import annotations
 import os
 import signal
 import threading
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Iterator
 
 import imageio.v2 as imageio
 import mujoco
@@ -37,11 +37,13 @@ def make_renderer(model: mujoco.MjModel, config: VideoConfig) -> HeadlessRendere
         first = str(err).splitlines()[0] if str(err) else type(err).__name__
         fix = (
             "GLFW needs a display: unset MUJOCO_GL, or set it to egl, to render headless"
-            if backend.lower() == "glfw" else
-            "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa (apt-get install "
+            if backend.lower() == "glfw"
+            else "accepted egl (apt-get install libegl1 libgl1-mesa-dri) or osmesa (apt-get install "
             "libosmesa6)"
         )
-        raise MachineError(f"video: no OpenGL context with MUJOCO_GL={backend} ({first}); {fix}") from None
+        raise MachineError(
+            f"video: no OpenGL context with MUJOCO_GL={backend} ({first}); {fix}"
+        ) from None
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = config.shadows
     return renderer
 
@@ -88,8 +90,13 @@ class Recorder:
         self.camera = model.camera(config.camera).id
         self.tmp = temporary_beside(path)
         self.writer = imageio.get_writer(
-            self.tmp, format="FFMPEG", fps=config.fps, codec="libx264", quality=7,
-            macro_block_size=2, pixelformat="yuv420p",
+            self.tmp,
+            format="FFMPEG",
+            fps=config.fps,
+            codec="libx264",
+            quality=7,
+            macro_block_size=2,
+            pixelformat="yuv420p",
             # x264's "veryfast" halves the encoder's CPU against its default ("medium") and gives
             # a file no larger for these flat-shaded scenes: the encoder shares 2 cores with
             # physics and llvmpipe.

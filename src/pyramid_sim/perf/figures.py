@@ -7,9 +7,10 @@ import os
 import resource
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -90,8 +91,9 @@ class Recording:
 
     def spawned(self, slot: int, data: mujoco.MjData) -> None:
         q, v = self.handles.brick_qpos[slot], self.handles.brick_dofs[slot]
-        self.spawns.append((len(self.ctrl), slot, data.qpos[q : q + 7].copy(),
-                            data.qvel[v : v + 6].copy()))
+        self.spawns.append(
+            (len(self.ctrl), slot, data.qpos[q : q + 7].copy(), data.qvel[v : v + 6].copy())
+        )
 
     def replay(self, model: mujoco.MjModel) -> tuple[float, np.ndarray]:
         """Step the recorded controls on a fresh MjData from the build's start state, setting
@@ -210,7 +212,8 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     config = SimConfig(robot=bench.robot)
     spec = bench.structure
     figures: dict[str, Any] = {
-        "structure": structure_label(spec), "robot": bench.robot,
+        "structure": structure_label(spec),
+        "robot": bench.robot,
     }
     progress("bare physics")
     figures["bare_steps_per_s"] = bare_rate(config, spec, bench.bare_seconds)

@@ -45,10 +45,20 @@ BUILD_TO_REPLAY = 0.8  # the build's rate against its own physics replayed alone
 
 TARGETS = (
     Target("build_to_replay_ratio", BUILD_TO_REPLAY, True, f">= {BUILD_TO_REPLAY}"),
-    Target("sim_s_per_brick", 12.9, False, "<= 12.9 (lockstep, the 20-brick pyramid)",
-           DEFAULT_STRUCTURE),
-    Target("sim_s_per_brick_overlap", 5.0, False, "<= 5 (overlap, the 20-brick pyramid)",
-           DEFAULT_STRUCTURE),
+    Target(
+        "sim_s_per_brick",
+        12.9,
+        False,
+        "<= 12.9 (lockstep, the 20-brick pyramid)",
+        DEFAULT_STRUCTURE,
+    ),
+    Target(
+        "sim_s_per_brick_overlap",
+        5.0,
+        False,
+        "<= 5 (overlap, the 20-brick pyramid)",
+        DEFAULT_STRUCTURE,
+    ),
     Target("max_slip_mm", 2.0, False, "<= 2 mm"),
     Target("max_joint_speed_ratio", 1.0, False, "<= 1"),
     Target("max_joint_torque_ratio", 1.0, False, "<= 1"),
@@ -69,8 +79,11 @@ ROWS = (
     ("physics_us_per_control_step", "the build's physics, us per control step", "{:.0f}"),
     ("control_us_per_control_step", "the control step, us", "{:.0f}"),
     ("control_budget_us", "the control step's budget at 0.8, us", "{:.0f}"),
-    ("ik_floor_us_per_control_step", "the IK's floor (mink's terms and kinematics, daqp), us",
-     "{:.0f}"),
+    (
+        "ik_floor_us_per_control_step",
+        "the IK's floor (mink's terms and kinematics, daqp), us",
+        "{:.0f}",
+    ),
     ("ik_solve_ms_median", "IK solve, both arms, median ms", "{:.3f}"),
     ("ik_solve_ms_p99", "IK solve, both arms, p99 ms", "{:.3f}"),
     ("sim_s_per_brick", "simulated s per brick", "{:.2f}"),

@@ -4,8 +4,9 @@ it makes every control step while mink is the source of its tasks."""
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any, Callable, Iterator
+from typing import Any
 
 
 def ik_floor_calls() -> list[tuple[Any, str]]:
@@ -16,8 +17,11 @@ def ik_floor_calls() -> list[tuple[Any, str]]:
     import mink
 
     return [
-        (mink.FrameTask, "compute_qp_residual"), (mink.PostureTask, "compute_error"),
-        (mink.Configuration, "update"), (mink.Configuration, "integrate"), (daqp, "solve"),
+        (mink.FrameTask, "compute_qp_residual"),
+        (mink.PostureTask, "compute_error"),
+        (mink.Configuration, "update"),
+        (mink.Configuration, "integrate"),
+        (daqp, "solve"),
     ]
 
 
@@ -37,6 +41,7 @@ def timed_calls(calls: list[tuple[Any, str]]) -> Iterator[list[float]]:
                 depth[0] -= 1
                 if depth[0] == 0:
                     spent[0] += time.perf_counter() - start
+
         return wrapper
 
     originals = [(owner, name, getattr(owner, name)) for owner, name in calls]

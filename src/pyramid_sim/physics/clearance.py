@@ -33,7 +33,8 @@ def subtree(model: mujoco.MjModel, root: str) -> set[int]:
 def colliding_geoms(model: mujoco.MjModel, bodies: set[int]) -> list[int]:
     """Ids of the colliding geoms on `bodies`, in id order."""
     return [
-        g for g in range(model.ngeom)
+        g
+        for g in range(model.ngeom)
         if model.geom_bodyid[g] in bodies and (model.geom_contype[g] or model.geom_conaffinity[g])
     ]
 
@@ -56,7 +57,9 @@ class ArmClearance:
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, robot: RobotDescription) -> None:
         self.model, self.data = model, data
         left, right = (
-            arm_geoms(model, robot.arms[a], robot.arms[a].guarded_bodies + robot.arms[a].finger_bodies)
+            arm_geoms(
+                model, robot.arms[a], robot.arms[a].guarded_bodies + robot.arms[a].finger_bodies
+            )
             for a in c.ARMS
         )
         pairs = np.array([(a, b) for a in left for b in right])
@@ -72,7 +75,11 @@ class ArmClearance:
         bound = np.sqrt(np.einsum("ij,ij->i", diff, diff)) - self._rsum
         for i in np.flatnonzero(bound < self.closest):
             dist = mujoco.mj_geomDistance(
-                self.model, self.data, int(self._g1[i]), int(self._g2[i]), min(self.closest, FAR),
+                self.model,
+                self.data,
+                int(self._g1[i]),
+                int(self._g2[i]),
+                min(self.closest, FAR),
                 self._fromto,
             )
             if dist < self.closest:

@@ -38,7 +38,11 @@ class BrickCustody:
     """Every brick's whereabouts during a build, from the spawn spot to its place."""
 
     def __init__(
-        self, data: mujoco.MjData, handles: SceneHandles, spawner: Spawner, bricks: int,
+        self,
+        data: mujoco.MjData,
+        handles: SceneHandles,
+        spawner: Spawner,
+        bricks: int,
         config: SimConfig,
     ) -> None:
         self.data, self.handles, self.spawner = data, handles, spawner

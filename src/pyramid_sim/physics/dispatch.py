@@ -3,7 +3,7 @@ advanced through them; an arm waits at the shared zone's edge while it may not e
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from ..choices import Arm
 from ..config import SimConfig
@@ -32,7 +32,11 @@ class ArmDispatch:
     """Both arms' runners, the task each is running, and the end-of-build retract."""
 
     def __init__(
-        self, plan: Plan, config: SimConfig, spawner: Spawner, tcp: dict[str, Pose],
+        self,
+        plan: Plan,
+        config: SimConfig,
+        spawner: Spawner,
+        tcp: dict[str, Pose],
         zones: dict[str, Zone],
     ) -> None:
         self.plan, self.config, self.spawner, self.zones = plan, config, spawner, zones
@@ -44,7 +48,9 @@ class ArmDispatch:
             self.scheduler = OverlapScheduler(*queues, conflict=self._reach_across)
         else:
             self.scheduler = LockstepScheduler(*queues)
-        self.runners = {a: ArmRunner(a, config, tcp[a], config.robot_description.open_gap()) for a in c.ARMS}
+        self.runners = {
+            a: ArmRunner(a, config, tcp[a], config.robot_description.open_gap()) for a in c.ARMS
+        }
         self.task_of: dict[str, Task | None] = {a: None for a in c.ARMS}
         self._retracting = {a: False for a in c.ARMS}
         self._settle_until: float | None = None
@@ -76,14 +82,20 @@ class ArmDispatch:
     def _reach_gap(self, a: Task, b: Task) -> float:
         def reach(task: Task) -> tuple[tuple[float, ...], tuple[float, float]]:
             assert task.brick is not None
-            pose = self.plan.spawn if task.action is Action.PICK else self.plan.bricks[task.brick].target.pose
+            pose = (
+                self.plan.spawn
+                if task.action is Action.PICK
+                else self.plan.bricks[task.brick].target.pose
+            )
             return self.robot.arms[task.arm].base, (pose.x, pose.y)
 
         return segment_gap(*reach(a), *reach(b))
 
     def _may_go(self, arm: Arm, step: Step) -> bool:
         """Whether the arm may go straight on into the zone `step` enters."""
-        return self.scheduler.may_enter(arm) and (not step.needs_brick or self.spawner.brick_ready())
+        return self.scheduler.may_enter(arm) and (
+            not step.needs_brick or self.spawner.brick_ready()
+        )
 
     def schedule(self, now: float) -> bool:
         """Hand idle arms their next steps; True once the build is over and has settled."""
@@ -107,8 +119,10 @@ class ArmDispatch:
         """Give an idle arm the steps of its task in the current phase."""
         task = self.scheduler.task(arm)
         motion = self.config.hand_motion
-        grasp = {"grasp_height": self.robot.grasp_height,
-                 "yaw_ref": self.robot.arms[arm].yaw_reference}
+        grasp = {
+            "grasp_height": self.robot.grasp_height,
+            "yaw_ref": self.robot.arms[arm].yaw_reference,
+        }
         if task.action in (Action.PICK, Action.PLACE, Action.BUILD):
             assert task.brick is not None
             target = self.plan.bricks[task.brick].target.pose
@@ -116,19 +130,32 @@ class ArmDispatch:
             steps = []
             if task.action in (Action.PICK, Action.BUILD):
                 then = grasp_yaw(target.yaw, grasp["yaw_ref"]) if quick else None
-                steps += pick_steps(self.plan.spawn, motion, carry_to=target, then_yaw=then,
-                                    quick_lift=quick, **grasp)
+                steps += pick_steps(
+                    self.plan.spawn,
+                    motion,
+                    carry_to=target,
+                    then_yaw=then,
+                    quick_lift=quick,
+                    **grasp,
+                )
             if task.action in (Action.PLACE, Action.BUILD):
                 then = self._yaw_after(arm, task.brick) if quick else None
                 steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
                 assert steps[0].pose is not None  # a pick or a place begins with a move
-                steps.insert(0, standby_step(
-                    arm, list(self.zones.values()), self.plan.spawn.x, steps[0].pose, motion,
-                    STANDBY_CLEARANCE,
-                    [b.target.pose for b in self.plan.bricks[: task.brick]],  # laid by now
-                    self.config.brick.length,
-                ))
+                steps.insert(
+                    0,
+                    standby_step(
+                        arm,
+                        list(self.zones.values()),
+                        self.plan.spawn.x,
+                        steps[0].pose,
+                        motion,
+                        STANDBY_CLEARANCE,
+                        [b.target.pose for b in self.plan.bricks[: task.brick]],  # laid by now
+                        self.config.brick.length,
+                    ),
+                )
             self.runners[arm].load(steps)
         elif task.action is Action.CLEAR:
             self.runners[arm].load(clear_steps(arm, motion, self.robot))

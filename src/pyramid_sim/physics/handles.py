@@ -3,7 +3,7 @@ monitors and the tests all index MjData through these."""
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import mujoco
 import numpy as np
@@ -52,7 +52,10 @@ class SceneHandles:
         return len(self.brick_body)
 
     def place_brick(
-        self, data: mujoco.MjData, slot: int, position: Sequence[float] | np.ndarray,
+        self,
+        data: mujoco.MjData,
+        slot: int,
+        position: Sequence[float] | np.ndarray,
         quat: Sequence[float] | np.ndarray | None = None,
     ) -> None:
         """Put the brick in `slot` at `position` (and `quat`), at rest."""

@@ -149,8 +149,11 @@ class DualArmIK:
         self.configuration.update(q)
         self.velocity = np.zeros(self.model.nv)
         for arm in c.ARMS:
-            self.tasks[arm].set_target(self.configuration.get_transform_frame_to_world(
-                self.robot.arms[arm].tcp_site, "site"))
+            self.tasks[arm].set_target(
+                self.configuration.get_transform_frame_to_world(
+                    self.robot.arms[arm].tcp_site, "site"
+                )
+            )
             self._targets.pop(arm, None)
 
     def arm_q(self, arm: Arm) -> np.ndarray:
@@ -180,9 +183,7 @@ class DualArmIK:
         velocity = self.solve_velocity()
         q_next = self.configuration.integrate(velocity, self.dt)
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
-        q_next[self.limited_q] = np.clip(
-            q_next[self.limited_q], self.q_low, self.q_high
-        )
+        q_next[self.limited_q] = np.clip(q_next[self.limited_q], self.q_low, self.q_high)
         self.velocity = velocity
         self.configuration.update(q_next)
 
@@ -202,8 +203,12 @@ class DualArmIK:
         last = self.velocity * self.dt
         accel_low, accel_high = last - self._max_ddq, last + self._max_ddq
         step, _, exitflag, _ = daqp.solve(
-            H, c, G, np.concatenate([np.minimum(high, accel_high), h]),
-            np.concatenate([np.maximum(low, accel_low), free]), sense,
+            H,
+            c,
+            G,
+            np.concatenate([np.minimum(high, accel_high), h]),
+            np.concatenate([np.maximum(low, accel_low), free]),
+            sense,
         )
         if exitflag > 0:
             return step / self.dt

@@ -11,7 +11,7 @@ QP has the same terms as mink's (tests/physics/test_ik_qp.py holds each to `mink
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import mink
 import mujoco
@@ -42,7 +42,8 @@ class IKProblem:
         # A posture task's Jacobian is constant: its weighted rows and their part of H once.
         self._postures = [
             (t, t.cost[:, None] * t.compute_jacobian(configuration))
-            for t in tasks if isinstance(t, mink.PostureTask)
+            for t in tasks
+            if isinstance(t, mink.PostureTask)
         ]
         self._H0 = sum((wj.T @ wj for _, wj in self._postures), np.zeros((nv, nv)))
         self._H0.flat[:: nv + 1] += damping
@@ -108,7 +109,10 @@ class BrakingCollisionLimit(mink.Limit):
     ) -> None:
         # gain 1 and dt 1 below make mink's bound the bare gap left above the minimum.
         self.limit = mink.CollisionAvoidanceLimit(
-            model, pairs, gain=1.0, minimum_distance_from_collisions=minimum,
+            model,
+            pairs,
+            gain=1.0,
+            minimum_distance_from_collisions=minimum,
             collision_detection_distance=minimum + COLLISION_LOOKAHEAD,
         )
         geoms = np.array(self.limit.geom_id_pairs, dtype=int).reshape(-1, 2)

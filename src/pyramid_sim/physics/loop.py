@@ -70,7 +70,12 @@ class BuildLoop:
         self.last_progress = self.data.time
         kind = step.kind
         picking = task is not None and task.action in (Action.PICK, Action.BUILD)
-        if kind is StepKind.MOVE and step.name == "servo" and picking and not self.custody.carry[arm]:
+        if (
+            kind is StepKind.MOVE
+            and step.name == "servo"
+            and picking
+            and not self.custody.carry[arm]
+        ):
             if self.spawner.current is not None:  # the fingers are around it: handled now
                 self.custody.reached(self.spawner.current)
         elif kind is StepKind.GRIP:
@@ -107,7 +112,11 @@ class BuildLoop:
                 break
             if hooks.on_step is not None:
                 hooks.on_step(d)
-            if hooks.on_frame is not None and hooks.frame_dt is not None and d.time >= self._next_frame - 1e-9:
+            if (
+                hooks.on_frame is not None
+                and hooks.frame_dt is not None
+                and d.time >= self._next_frame - 1e-9
+            ):
                 hooks.on_frame(m, d)
                 self._next_frame += hooks.frame_dt
         self.steps += k + 1

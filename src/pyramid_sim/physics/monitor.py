@@ -75,7 +75,8 @@ class StepMonitor:
         self._no_warnings = bytes(self._warnings.nbytes)
         # Contact counts MuJoCo keeps: the arms with each other, then with the robot's body.
         self._contact_adr = [int(model.sensor(c.ARM_ARM_SENSOR).adr[0])] + [
-            int(model.sensor_adr[s]) for s in range(model.nsensor)
+            int(model.sensor_adr[s])
+            for s in range(model.nsensor)
             if model.sensor(s).name.startswith(c.ARM_BODY_SENSOR)
         ]
         self._contacts = _Span(data.sensordata, np.array(self._contact_adr))
@@ -113,7 +114,9 @@ class StepMonitor:
             return
         v, f = self._speed.rows(n), self._qpos.rows(n, self._fingers)
         b0, b1, b2 = self._bias
-        servo = self._gain * self._ctrl.rows(n) + b0 + b1 * self._qpos.rows(n, self._angles) + b2 * v
+        servo = (
+            self._gain * self._ctrl.rows(n) + b0 + b1 * self._qpos.rows(n, self._angles) + b2 * v
+        )
         ratio = np.abs(servo + self._gravity.rows(n)) * self._inv_torque
         speed = np.abs(v) * self._inv_vel
         if float(speed.max()) > self.speed_ratio:
@@ -137,5 +140,6 @@ def joint_limits(model: mujoco.MjModel, robot: RobotDescription) -> JointLimits:
     return JointLimits(
         velocity=np.concatenate([arm.velocity_limits for arm in arms]),
         torque=np.concatenate([arm.torque_limits for arm in arms]),
-        finger_low=low.copy(), finger_high=high.copy(),
+        finger_low=low.copy(),
+        finger_high=high.copy(),
     )

@@ -18,6 +18,11 @@ def brick_name(index: int) -> str:
 
 
 __all__ = [
-    "ARMS", "ARM_ARM_SENSOR", "ARM_BODY_SENSOR", "BRICK_PREFIX", "SPAWN_VOLUME", "TABLE_GEOM",
+    "ARMS",
+    "ARM_ARM_SENSOR",
+    "ARM_BODY_SENSOR",
+    "BRICK_PREFIX",
+    "SPAWN_VOLUME",
+    "TABLE_GEOM",
     "brick_name",
 ]

@@ -26,7 +26,9 @@ def levers(model: mujoco.MjModel, geoms: np.ndarray) -> np.ndarray:
         body, path = int(model.geom_bodyid[g]), float(np.linalg.norm(model.geom_pos[g]))
         path += float(model.geom_rbound[g])
         while body > 0:
-            for j in range(model.body_jntadr[body], model.body_jntadr[body] + model.body_jntnum[body]):
+            for j in range(
+                model.body_jntadr[body], model.body_jntadr[body] + model.body_jntnum[body]
+            ):
                 hinge = model.jnt_type[j] == mujoco.mjtJoint.mjJNT_HINGE
                 reach = path + float(np.linalg.norm(model.jnt_pos[j])) if hinge else 1.0
                 adr = model.jnt_qposadr[j]
@@ -43,7 +45,10 @@ class PairGaps:
     move the geoms (every hinge and slide above them if None)."""
 
     def __init__(
-        self, model: mujoco.MjModel, g1: np.ndarray, g2: np.ndarray,
+        self,
+        model: mujoco.MjModel,
+        g1: np.ndarray,
+        g2: np.ndarray,
         qpos: np.ndarray | None = None,
     ) -> None:
         self.model = model
@@ -77,7 +82,11 @@ class PairGaps:
         for i in near[spheres <= distance]:
             self.measured += 1
             gap = mujoco.mj_geomDistance(
-                self.model, data, int(self.g1[i]), int(self.g2[i]), distance + REFRESH_REACH,
+                self.model,
+                data,
+                int(self.g1[i]),
+                int(self.g2[i]),
+                distance + REFRESH_REACH,
                 self._fromto,
             )
             self._base[i] = gap + self._closed

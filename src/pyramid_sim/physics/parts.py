@@ -56,16 +56,20 @@ def schedule_zones(schedule: Schedule, plan: Plan, config: SimConfig) -> dict[st
     structure's for the overlap schedule."""
     targets = [b.target.pose for b in plan.bricks]
     if schedule == "overlap":
-        return overlap_zones(plan.spawn, targets, config.brick.length, config.brick.width, ZONE_MARGIN)
+        return overlap_zones(
+            plan.spawn, targets, config.brick.length, config.brick.width, ZONE_MARGIN
+        )
     return {"shared": shared_zone(plan.spawn, targets, config.brick.length / 2, ZONE_MARGIN)}
 
 
-def step_monitor(model: mujoco.MjModel, data: mujoco.MjData, handles: SceneHandles,
-                 config: SimConfig) -> StepMonitor:
+def step_monitor(
+    model: mujoco.MjModel, data: mujoco.MjData, handles: SceneHandles, config: SimConfig
+) -> StepMonitor:
     """The monitor of both arms' joints and fingers, left arm first."""
     h = handles
     return StepMonitor(
-        model, data,
+        model,
+        data,
         dofs=np.concatenate([h.arm_dofs[a] for a in c.ARMS]),
         qpos=np.concatenate([h.arm_qpos[a] for a in c.ARMS]),
         actuators=np.concatenate([h.arm_actuators[a] for a in c.ARMS]),
@@ -75,7 +79,10 @@ def step_monitor(model: mujoco.MjModel, data: mujoco.MjData, handles: SceneHandl
 
 
 def start_at_clear_poses(
-    model: mujoco.MjModel, data: mujoco.MjData, handles: SceneHandles, ik: DualArmIK,
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    handles: SceneHandles,
+    ik: DualArmIK,
     config: SimConfig,
 ) -> None:
     """Both arms at their outer clear poses, outside every zone, hands open; the IK there."""
@@ -101,8 +108,13 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     handles = SceneHandles(model, config.robot_description, len(plan.bricks) + config.spare_bricks)
     ik = DualArmIK(config)
     spawner = Spawner(
-        model, config.robot_description, handles, plan.spawn, clearance=SPOT_CLEARANCE,
-        arm_clearance=SPOT_ARM_CLEARANCE, jitter=config.layout.spawn_jitter_mm / 1000.0,
+        model,
+        config.robot_description,
+        handles,
+        plan.spawn,
+        clearance=SPOT_CLEARANCE,
+        arm_clearance=SPOT_ARM_CLEARANCE,
+        jitter=config.layout.spawn_jitter_mm / 1000.0,
         seed=config.seed,
     )
     custody = BrickCustody(data, handles, spawner, len(plan.bricks), config)
@@ -110,8 +122,16 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     zones = schedule_zones(config.schedule, plan, config)
     dispatch = ArmDispatch(plan, config, spawner, {a: ik.tcp_pose(a) for a in c.ARMS}, zones)
     return BuildParts(
-        plan=plan, config=config, model=model, data=data, handles=handles, ik=ik,
-        spawner=spawner, custody=custody, dispatch=dispatch,
-        zones=ZoneWatch(zones, data, handles), clearance=ArmClearance(model, data, config.robot_description),
+        plan=plan,
+        config=config,
+        model=model,
+        data=data,
+        handles=handles,
+        ik=ik,
+        spawner=spawner,
+        custody=custody,
+        dispatch=dispatch,
+        zones=ZoneWatch(zones, data, handles),
+        clearance=ArmClearance(model, data, config.robot_description),
         monitor=step_monitor(model, data, handles, config),
     )

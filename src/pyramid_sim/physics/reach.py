@@ -29,8 +29,9 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
         if goals:
             label += f" (goals row {goals.index(b.target) + 1})"
         grasp, yaw_ref = robot.grasp_height, robot.arms[b.arm].yaw_reference
-        for step in pick_steps(plan.spawn, motion, carry_to=b.target.pose, grasp_height=grasp,
-                               yaw_ref=yaw_ref):
+        for step in pick_steps(
+            plan.spawn, motion, carry_to=b.target.pose, grasp_height=grasp, yaw_ref=yaw_ref
+        ):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} pick {step.name}", step.pose))
         for step in place_steps(b.target.pose, motion, grasp_height=grasp, yaw_ref=yaw_ref):
@@ -47,7 +48,9 @@ class ReachChecker:
         self.ik = DualArmIK(config, limit_acceleration=False)
         self._known: dict[tuple[str, Pose], str | None] = {}
         self.ik.reset_home()
-        self._clear_q = {a: self.ik.solve(a, clear_pose(a, config.robot_description)) for a in c.ARMS}
+        self._clear_q = {
+            a: self.ik.solve(a, clear_pose(a, config.robot_description)) for a in c.ARMS
+        }
 
     def why_not(self, arm: Arm, pose: Pose) -> str | None:
         """None if the arm reaches the pose from home, else why not. The other arm waits at its
@@ -70,7 +73,9 @@ class ReachChecker:
             if reason is not None:
                 raise UnreachableError(f"{what}: {reason}")
 
-    def largest(self, spec: StructureSpec, arms: ArmChoice = "both", below: int | None = None) -> int:
+    def largest(
+        self, spec: StructureSpec, arms: ArmChoice = "both", below: int | None = None
+    ) -> int:
         """The largest value (under `below`) of the structure's size knob (SIZE_KNOB: layers,
         width or towers; the other options as in `spec`) whose every pose is reachable."""
         knob = SIZE_KNOB[spec.name]
@@ -129,13 +134,11 @@ def require_reachable(plan: Plan, config: SimConfig) -> None:
         # keeps three courses), so the whole size is named.
         largest = (
             f"the largest reachable is {knob} {best} ({resized(spec, knob, best).size_text()})"
-            if best else
-            f"no {knob} value brings {spec.name} with {held_fixed(spec)} within reach of "
+            if best
+            else f"no {knob} value brings {spec.name} with {held_fixed(spec)} within reach of "
             f"the {config.robot} robot"
         )
-        raise ConfigError(
-            f"{knob}: {what} is out of reach ({err}); {largest}"
-        ) from None
+        raise ConfigError(f"{knob}: {what} is out of reach ({err}); {largest}") from None
 
 
 def prepare(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") -> Plan:

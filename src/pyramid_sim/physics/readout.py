@@ -43,7 +43,9 @@ def measurements(
         torque_joint=monitor.torque_joint,
         speed_joint=monitor.speed_joint,
         idle_motion_mm=custody.idle_motion * 1000.0,
-        contact_friction=contact_frictions(parts.model, parts.handles, parts.config.robot_description),
+        contact_friction=contact_frictions(
+            parts.model, parts.handles, parts.config.robot_description
+        ),
         closest_arm_m=parts.clearance.closest,
         closest_arm_time=parts.clearance.closest_time,
         physics_steps=physics_steps,

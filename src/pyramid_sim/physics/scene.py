@@ -66,17 +66,26 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     spawn = spec.site("spawn_marker")  # the brick's footprint, a little larger, as it lies
     spawn.pos = [layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + 0.0005]
     spawn.quat = list(yaw_quaternion(layout.spawn_yaw))
-    spawn.size = [config.brick.length / 2 + MARKER_MARGIN, config.brick.width / 2 + MARKER_MARGIN,
-                  0.0005]
+    spawn.size = [
+        config.brick.length / 2 + MARKER_MARGIN,
+        config.brick.width / 2 + MARKER_MARGIN,
+        0.0005,
+    ]
     # Where the next brick will be set: no contact, nothing drawn; the spawner measures how
     # near bricks and arm links are to it.
     jitter = layout.spawn_jitter_mm / 1000.0
     brick = config.brick
     spec.worldbody.add_geom(
-        name=c.SPAWN_VOLUME, type=mujoco.mjtGeom.mjGEOM_BOX, contype=0, conaffinity=0, group=5,
+        name=c.SPAWN_VOLUME,
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        contype=0,
+        conaffinity=0,
+        group=5,
         size=[brick.length / 2 + jitter, brick.width / 2 + jitter, brick.height / 2],
         pos=[layout.spawn_xy[0], layout.spawn_xy[1], layout.table_top_z + brick.height / 2],
-        quat=list(yaw_quaternion(layout.spawn_yaw)), rgba=[0, 0, 0, 0], mass=0,
+        quat=list(yaw_quaternion(layout.spawn_yaw)),
+        rgba=[0, 0, 0, 0],
+        mass=0,
     )
     robot = add_robot(spec, config)
     if with_bricks:
@@ -128,14 +137,22 @@ def _add_contact_sensors(spec: mujoco.MjSpec, robot: RobotDescription) -> None:
     count = [1, 3, 1]  # data "found", reduce "netforce": one value, the contact count
     arms = robot.arms
     spec.add_sensor(
-        name=c.ARM_ARM_SENSOR, type=mujoco.mjtSensor.mjSENS_CONTACT,
-        objtype=mujoco.mjtObj.mjOBJ_XBODY, objname=arms["left"].root_body,
-        reftype=mujoco.mjtObj.mjOBJ_XBODY, refname=arms["right"].root_body, intprm=count,
+        name=c.ARM_ARM_SENSOR,
+        type=mujoco.mjtSensor.mjSENS_CONTACT,
+        objtype=mujoco.mjtObj.mjOBJ_XBODY,
+        objname=arms["left"].root_body,
+        reftype=mujoco.mjtObj.mjOBJ_XBODY,
+        refname=arms["right"].root_body,
+        intprm=count,
     )
     for arm in c.ARMS:
         for i, body in enumerate(robot.static_bodies):
             spec.add_sensor(
-                name=f"{c.ARM_BODY_SENSOR}{arm}_{i}", type=mujoco.mjtSensor.mjSENS_CONTACT,
-                objtype=mujoco.mjtObj.mjOBJ_XBODY, objname=arms[arm].root_body,
-                reftype=mujoco.mjtObj.mjOBJ_BODY, refname=body, intprm=count,
+                name=f"{c.ARM_BODY_SENSOR}{arm}_{i}",
+                type=mujoco.mjtSensor.mjSENS_CONTACT,
+                objtype=mujoco.mjtObj.mjOBJ_XBODY,
+                objname=arms[arm].root_body,
+                reftype=mujoco.mjtObj.mjOBJ_BODY,
+                refname=body,
+                intprm=count,
             )

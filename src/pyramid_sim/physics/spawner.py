@@ -85,7 +85,9 @@ class Spawner:
         offset = data.xpos[body] - self.spawn.position
         rot = data.xmat[body].reshape(3, 3)
         return (
-            math.hypot(offset[0], offset[1]), abs(float(offset[2])), tilt_of(rot),
+            math.hypot(offset[0], offset[1]),
+            abs(float(offset[2])),
+            tilt_of(rot),
             symmetric_yaw_error(yaw_of(rot), self.spawn.yaw),
         )
 
@@ -94,8 +96,10 @@ class Spawner:
         back where it was picked can simply be picked again)."""
         across, height, tilt, turn = self.spot_offset(data, slot)
         return bool(
-            across <= self.jitter * math.sqrt(2) + ON_SPOT_XY and height <= ON_SPOT_Z
-            and tilt <= ON_SPOT_ANGLE and turn <= ON_SPOT_ANGLE
+            across <= self.jitter * math.sqrt(2) + ON_SPOT_XY
+            and height <= ON_SPOT_Z
+            and tilt <= ON_SPOT_ANGLE
+            and turn <= ON_SPOT_ANGLE
         )
 
     def off_spot(self, data: mujoco.MjData, slot: int) -> str:
@@ -124,10 +128,11 @@ class Spawner:
         yaw = self.spawn.yaw
         offset = self.rng.uniform(-self.jitter, self.jitter, size=2) if self.jitter else (0.0, 0.0)
         self.handles.place_brick(
-            data, slot, self.spawn.position + (offset[0], offset[1], 0.0),
+            data,
+            slot,
+            self.spawn.position + (offset[0], offset[1], 0.0),
             yaw_quaternion(yaw),
         )
         self.next_slot += 1
         self.current = slot
         return slot
-

@@ -52,6 +52,5 @@ def stall_reason(
         if spawner.remaining == 0 and custody.needs_brick():
             cause += f" (no spare brick left of {config.spare_bricks})"
     return (
-        f"stalled at t = {now:.1f} s: no arm finished a move for "
-        f"{config.stall_time:g} s; {cause}"
+        f"stalled at t = {now:.1f} s: no arm finished a move for {config.stall_time:g} s; {cause}"
     )

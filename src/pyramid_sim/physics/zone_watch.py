@@ -3,7 +3,8 @@ scheduler (which lets an arm in only once the other is out) and counted when bot
 
 from __future__ import annotations
 
-from typing import Mapping, Protocol
+from collections.abc import Mapping
+from typing import Protocol
 
 import mujoco
 
@@ -22,7 +23,9 @@ class ZoneListener(Protocol):
 class ZoneWatch:
     """The schedule's zones against the arms' bodies in `data`."""
 
-    def __init__(self, zones: Mapping[str, Zone], data: mujoco.MjData, handles: SceneHandles) -> None:
+    def __init__(
+        self, zones: Mapping[str, Zone], data: mujoco.MjData, handles: SceneHandles
+    ) -> None:
         self.zones = dict(zones)
         self._xpos = data.xpos
         self._bodies = handles.zone_bodies

@@ -22,8 +22,16 @@ HOME = {
 YAW_REFERENCE = {"left": 2.86, "right": -2.86}
 MOUNTS = {"left": (0.025, 0.22, 0.119), "right": (0.025, -0.22, 0.119)}
 # From the elbow out; the upper elbow turns about the shoulder, 11 mm from the torso at home.
-GUARDED = ("upper_elbow_visual", "lower_elbow", "upper_forearm",
-           "upper_forearm_visual", "lower_forearm", "wrist", "hand_link", "gripper_base_link")
+GUARDED = (
+    "upper_elbow_visual",
+    "lower_elbow",
+    "upper_forearm",
+    "upper_forearm_visual",
+    "lower_forearm",
+    "wrist",
+    "hand_link",
+    "gripper_base_link",
+)
 FINGER_STROKE = 0.020833  # m each finger slides: the real gripper's
 SLOT_4_CLOSED = 0.054  # m between the paddle tips closed, fingers in slot 4 (of the xacro's 1-4)
 
@@ -36,8 +44,12 @@ def _arm(side: str) -> ArmDescription:
     s = PREFIX + side
     return ArmDescription(
         joints=tuple(f"{s}_{j}" for j in JOINTS),
-        velocity_limits=VELOCITY_LIMITS, torque_limits=TORQUE_LIMITS,
-        acceleration_limits=ACCELERATION_LIMITS, kp=KP, damping=DAMPING, home=HOME[side],
+        velocity_limits=VELOCITY_LIMITS,
+        torque_limits=TORQUE_LIMITS,
+        acceleration_limits=ACCELERATION_LIMITS,
+        kp=KP,
+        damping=DAMPING,
+        home=HOME[side],
         base=MOUNTS[side],
         root_body=f"{s}_arm_mount",
         tcp_site=f"{s}_tcp",
@@ -63,7 +75,9 @@ BAXTER = RobotDescription(
     posture_cost=1e-3,  # at 1e-2 the long arms settled 1.0-1.4 mm short of a target
     # Half the Panda's speeds (FINDINGS.md: picks and places held at 0.3 m/s): the 15 N m
     # wrist could not keep the hand's yaw at the Panda's pace.
-    max_speed=0.3, max_slow_speed=0.15, max_turn_rate=0.75,
+    max_speed=0.3,
+    max_slow_speed=0.15,
+    max_turn_rate=0.75,
     clear_pose=(0.45, 0.60, 0.30),
     static_bodies=tuple(
         PREFIX + b for b in ("torso", "pedestal", "collision_head_link_1", "collision_head_link_2")

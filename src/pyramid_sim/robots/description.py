@@ -8,9 +8,9 @@ and carries the real robot's limits and dimensions. Pure: no MuJoCo. The physics
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Mapping
 
 from ..choices import RobotName
 
@@ -42,8 +42,14 @@ class ArmDescription:
 
     def __post_init__(self) -> None:
         n = len(self.joints)
-        for name in ("velocity_limits", "torque_limits", "acceleration_limits", "kp", "damping",
-                     "home"):
+        for name in (
+            "velocity_limits",
+            "torque_limits",
+            "acceleration_limits",
+            "kp",
+            "damping",
+            "home",
+        ):
             if len(getattr(self, name)) != n:
                 raise ValueError(f"{name}: {len(getattr(self, name))} values for {n} joints")
 

@@ -28,8 +28,12 @@ def _arm(arm: Arm) -> ArmDescription:
 
     return ArmDescription(
         joints=tuple(name(f"panda_joint{i}") for i in range(1, 8)),
-        velocity_limits=VELOCITY_LIMITS, torque_limits=TORQUE_LIMITS,
-        acceleration_limits=ACCELERATION_LIMITS, kp=KP, damping=DAMPING, home=HOME,
+        velocity_limits=VELOCITY_LIMITS,
+        torque_limits=TORQUE_LIMITS,
+        acceleration_limits=ACCELERATION_LIMITS,
+        kp=KP,
+        damping=DAMPING,
+        home=HOME,
         base=BASES[arm],
         root_body=name("panda_link0"),
         tcp_site=name("tcp"),

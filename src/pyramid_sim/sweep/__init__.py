@@ -8,7 +8,9 @@ Importing the package imports none of its modules (a run needs MuJoCo, the grid 
 __all__ = [
     "backends",
     "grid",
+    "heatmaps",
     "lines",
+    "ray_backend",
     "report",
     "run",
     "store",

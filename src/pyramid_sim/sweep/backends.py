@@ -7,19 +7,17 @@ kills its worker, or passes the timeout becomes a failed row with its reason; th
 
 from __future__ import annotations
 
-import contextlib
 import multiprocessing as mp
 import multiprocessing.connection
 import os
 import signal
 import sys
-import tempfile
 import time
 from collections import deque
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any, Callable, Iterable, Iterator
+from typing import Any
 
-from ..errors import MachineError, PyramidSimError
 from ..output.result import BuildResult
 from .grid import SweepRun
 from .store import KEY_COLUMNS, RESULT_FIELDS
@@ -73,6 +71,7 @@ def run_one(spec: SweepRun) -> RunResult:
 
 # --- process backend ---------------------------------------------------------------------------
 
+
 def _die_with_parent() -> None:
     """A worker of a sweep that was killed stops too, instead of finishing its build unseen."""
     if sys.platform.startswith("linux"):
@@ -93,6 +92,7 @@ def _worker_loop(conn: mp.connection.Connection, run: Callable[[SweepRun], RunRe
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when a sweep stops
     from ..jobs import build  # noqa: F401  import MuJoCo and mink once, before any run
+
     while True:
         try:
             spec = conn.recv()
@@ -192,109 +192,3 @@ def _collect(worker: _Worker, timeout: float) -> RunResult | None:
         worker.proc.join()
         return failed(spec, f"timeout: still running after {timeout:g} s", elapsed)
     return None
-
-
-# --- Ray backend -------------------------------------------------------------------------------
-
-def require_ray() -> None:
-    """MachineError, before anything runs, when the ray extra is not installed."""
-    import importlib.util
-
-    if importlib.util.find_spec("ray") is None:
-        raise MachineError("backend: ray is not installed; accepted process, or ray after "
-                          "pip install -e '.[ray]'")
-
-
-def ray_connection_advice(address: str | None, err: Exception) -> str:
-    """Why a Ray cluster refused us, with what to set: clusters started with `ray start` (Ray
-    2.60 and later) ask clients for a token, and a client without `RAY_AUTH_MODE=token` only
-    hears 'Failed to connect' after about 20 s."""
-    advice = (
-        f"cannot connect to the Ray cluster at {address} ({str(err).splitlines()[0]}); "
-        "a cluster started with `ray start` wants token authentication: set RAY_AUTH_MODE=token "
-        "for the sweep (the token is in ~/.ray/auth_token where the head node was started; "
-        "elsewhere set RAY_AUTH_TOKEN to it)"
-    )
-    if os.environ.get("RAY_AUTH_MODE") == "token":
-        advice = (f"cannot connect to the Ray cluster at {address} ({str(err).splitlines()[0]}) "
-                  "with RAY_AUTH_MODE=token: check the address and that RAY_AUTH_TOKEN or "
-                  "~/.ray/auth_token holds the head node's token")
-    return advice
-
-
-@contextlib.contextmanager
-def native_stderr_held(hold: bool) -> Iterator[None]:
-    """Ray's C++ core writes a warning a second to stderr while a cluster refuses it (about
-    20): held back, a refusal (ConnectionError) reads as the one line that says what to set.
-    On success or another error they are passed on."""
-    if not hold:
-        yield
-        return
-    sys.stderr.flush()
-    saved = os.dup(2)
-    with tempfile.TemporaryFile() as held:
-        os.dup2(held.fileno(), 2)
-        refused = False
-        try:
-            yield
-        except ConnectionError:
-            refused = True
-            raise
-        finally:
-            os.dup2(saved, 2)
-            os.close(saved)
-            if not refused:
-                held.seek(0)
-                sys.stderr.write(held.read().decode(errors="replace"))
-
-
-def run_ray(
-    specs: Iterable[SweepRun],
-    workers: int,
-    timeout: float,
-    on_result: OnResult,
-    address: str | None = None,
-) -> None:
-    """Run every spec as a Ray task, at most `workers` at once, on a local Ray instance (started
-    with `workers` CPUs) or the cluster at `address`; the nodes need pyramid_sim installed."""
-    import logging
-
-    import ray
-
-    started_here = not ray.is_initialized()
-    if started_here:
-        try:
-            with native_stderr_held(address is not None):
-                ray.init(
-                    address=address, num_cpus=None if address else workers,
-                    include_dashboard=False, log_to_driver=False, logging_level=logging.ERROR,
-                )
-        except ConnectionError as err:
-            raise PyramidSimError(ray_connection_advice(address, err)) from None
-    task = ray.remote(num_cpus=1, max_retries=0)(run_one)
-    pending = deque(specs)
-    running: dict[Any, tuple[SweepRun, float]] = {}
-    try:
-        while pending or running:
-            while pending and len(running) < workers:
-                spec = pending.popleft()
-                running[task.remote(spec)] = (spec, time.monotonic())
-            wait = min(start + timeout for _, start in running.values()) - time.monotonic()
-            ready, _ = ray.wait(list(running), num_returns=1, timeout=max(0.0, wait))
-            for ref in ready:
-                spec, start = running.pop(ref)
-                try:
-                    on_result(ray.get(ref))
-                except ray.exceptions.RayError as err:
-                    reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
-                    on_result(failed(spec, reason, time.monotonic() - start))
-            for ref, (spec, start) in list(running.items()):
-                if time.monotonic() - start > timeout:
-                    ray.cancel(ref, force=True)
-                    del running[ref]
-                    on_result(failed(spec, f"timeout: still running after {timeout:g} s", timeout))
-    finally:
-        for ref in running:
-            ray.cancel(ref, force=True)
-        if started_here:
-            ray.shutdown()

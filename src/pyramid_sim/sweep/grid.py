@@ -160,8 +160,9 @@ class SweepConfig:
         for axis in self.full_axes():
             points = [p + ((axis.name, v),) for p in points for v in axis.values]
         return [
-            SweepRun(self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot,
-                    self.schedule)
+            SweepRun(
+                self.structure, self.arms, p, seed, self.spawn_jitter_mm, self.robot, self.schedule
+            )
             for p in points
             for seed in range(self.repeats)
         ]

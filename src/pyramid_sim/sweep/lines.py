@@ -28,12 +28,19 @@ def _by_value(rows: list[SweepRow], name: str) -> dict[float, list[SweepRow]]:
     return groups
 
 
-def _spread(ax: "Axes", groups: dict[float, list[SweepRow]], column: str, limit: float,
-            limit_text: str, unplaced: bool) -> None:
-    """Each run's value as a point, the mean over the runs of a value as a line, their range as
-    a band; with `unplaced`, a run with no value (a brick never placed) is a red cross along
-    the top. A run with no value otherwise measured nothing and is left out."""
-    xs, means, lows, highs, points, crosses = [], [], [], [], [], []
+def _statistics(
+    groups: dict[float, list[SweepRow]], column: str, unplaced: bool
+) -> tuple[
+    list[float], list[float], list[float], list[float], list[tuple[float, float]], list[float]
+]:
+    """Per value of the swept parameter: the mean, lowest and highest of the runs' values (where
+    any was measured), each run's point, and a cross for each run with no value if `unplaced`."""
+    xs: list[float] = []
+    means: list[float] = []
+    lows: list[float] = []
+    highs: list[float] = []
+    points: list[tuple[float, float]] = []
+    crosses: list[float] = []
     for value in sorted(groups):
         found = [number(r[column]) for r in groups[value]]
         finite = [v for v in found if not math.isnan(v)]
@@ -44,35 +51,91 @@ def _spread(ax: "Axes", groups: dict[float, list[SweepRow]], column: str, limit:
             means.append(sum(finite) / len(finite))
             lows.append(min(finite))
             highs.append(max(finite))
+    return xs, means, lows, highs, points, crosses
+
+
+def _spread(
+    ax: Axes,
+    groups: dict[float, list[SweepRow]],
+    column: str,
+    limit: float,
+    limit_text: str,
+    unplaced: bool,
+) -> None:
+    """Each run's value as a point, the mean over the runs of a value as a line, their range as
+    a band; with `unplaced`, a run with no value (a brick never placed) is a red cross along
+    the top. A run with no value otherwise measured nothing and is left out."""
+    xs, means, lows, highs, points, crosses = _statistics(groups, column, unplaced)
     top = max([limit, *highs]) * 1.15
     if len(xs) == 1:  # one value: a bar from the lowest run to the highest, the mean a tick
-        ax.errorbar(xs, means, yerr=[[means[0] - lows[0]], [highs[0] - means[0]]], fmt="_",
-                    color="#3182bd", markersize=24, capsize=6, label="mean and range")
+        ax.errorbar(
+            xs,
+            means,
+            yerr=[[means[0] - lows[0]], [highs[0] - means[0]]],
+            fmt="_",
+            color="#3182bd",
+            markersize=24,
+            capsize=6,
+            label="mean and range",
+        )
     elif xs:
         if any(h > lo for h, lo in zip(highs, lows)):  # repeats that differ
-            ax.fill_between(xs, lows, highs, color="#3182bd", alpha=0.18, linewidth=0,
-                            label="range over the runs")
+            ax.fill_between(
+                xs,
+                lows,
+                highs,
+                color="#3182bd",
+                alpha=0.18,
+                linewidth=0,
+                label="range over the runs",
+            )
         ax.plot(xs, means, "-", color="#3182bd", linewidth=1.5, label="mean")
-    if points:
-        ax.plot([p[0] for p in points], [p[1] for p in points], "o", color="#08519c",
-                markersize=4, label="a run")
-    if crosses:
-        ax.plot(crosses, [top * 1.04] * len(crosses), "x", color=UNPLACED_COLOUR, markersize=8,
-                markeredgewidth=2, linestyle="none", label="a brick not placed")
+    _runs(ax, points, crosses, top)
     ax.axhline(limit, color="#636363", linestyle="--", linewidth=1, label=limit_text)
     ax.set_ylim(0, top * 1.1)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=7,
-              frameon=False)  # below the axes: never over a point
+    ax.legend(
+        loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=7, frameon=False
+    )  # below the axes: never over a point
 
 
-def _success(ax: "Axes", groups: dict[float, list[SweepRow]]) -> None:
+def _runs(ax: Axes, points: list[tuple[float, float]], crosses: list[float], top: float) -> None:
+    """Each run's value a point; a run with no brick placed a red cross along the top."""
+    if points:
+        ax.plot(
+            [p[0] for p in points],
+            [p[1] for p in points],
+            "o",
+            color="#08519c",
+            markersize=4,
+            label="a run",
+        )
+    if crosses:
+        ax.plot(
+            crosses,
+            [top * 1.04] * len(crosses),
+            "x",
+            color=UNPLACED_COLOUR,
+            markersize=8,
+            markeredgewidth=2,
+            linestyle="none",
+            label="a brick not placed",
+        )
+
+
+def _success(ax: Axes, groups: dict[float, list[SweepRow]]) -> None:
     xs = sorted(groups)
     ok = [sum(r.success for r in groups[x]) for x in xs]
     rates = [k / len(groups[x]) for k, x in zip(ok, xs)]
     ax.plot(xs, rates, "o-", color="#1a9850", linewidth=1.5, markersize=6)
     for x, rate, k in zip(xs, rates, ok):
-        ax.annotate(f"{k}/{len(groups[x])}", (x, rate), textcoords="offset points",
-                    xytext=(0, 7), ha="center", fontsize=8)
+        ax.annotate(
+            f"{k}/{len(groups[x])}",
+            (x, rate),
+            textcoords="offset points",
+            xytext=(0, 7),
+            ha="center",
+            fontsize=8,
+        )
     ax.set_ylim(-0.05, 1.15)
 
 
@@ -90,11 +153,23 @@ def write_lines(rows: list[SweepRow], config: SweepConfig, path: Path) -> None:
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.8), constrained_layout=True)
     _success(axes[0], groups)
     axes[0].set_title("success rate (builds ok / runs)")
-    _spread(axes[1], groups, "worst_error_xy_mm", Tolerances().xy_mm,
-            f"placing tolerance {Tolerances().xy_mm:g} mm", unplaced=True)
+    _spread(
+        axes[1],
+        groups,
+        "worst_error_xy_mm",
+        Tolerances().xy_mm,
+        f"placing tolerance {Tolerances().xy_mm:g} mm",
+        unplaced=True,
+    )
     axes[1].set_title("worst placement error (mm)")
-    _spread(axes[2], groups, "max_slip_mm", SimConfig().slip_limit_mm,
-            f"slip limit {SimConfig().slip_limit_mm:g} mm", unplaced=False)
+    _spread(
+        axes[2],
+        groups,
+        "max_slip_mm",
+        SimConfig().slip_limit_mm,
+        f"slip limit {SimConfig().slip_limit_mm:g} mm",
+        unplaced=False,
+    )
     axes[2].set_title("max slip in the hand (mm)")
     span = (values[-1] - values[0]) or max(abs(values[0]) * 0.2, 0.5)
     for ax in axes:

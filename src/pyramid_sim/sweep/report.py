@@ -11,10 +11,9 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..output.files import write_atomic
-from ..output.result import Tolerances
 from ..params import param
 from .grid import Axis, SweepConfig, value_text
 from .store import SweepRow, row_key
@@ -51,7 +50,9 @@ def _stats(rows: list[SweepRow]) -> CellStats:
     return CellStats(
         runs=len(rows),
         succeeded=sum(r.success for r in rows),
-        worst_error_mm=max((math.inf if math.isnan(e) else e) for e in errors) if errors else math.nan,
+        worst_error_mm=max((math.inf if math.isnan(e) else e) for e in errors)
+        if errors
+        else math.nan,
         max_slip_mm=max(slips) if slips else math.nan,
     )
 
@@ -68,8 +69,11 @@ def group_rows(rows: list[SweepRow], config: SweepConfig) -> list[SweepRow]:
     ones and any seed (so two grids of one group share a plot, each point once)."""
     full = config.full_axes()
     fixed = {
-        "robot": config.robot, "schedule": config.schedule, "structure": config.structure.name,
-        "size": config.structure.size_text(), "arms": config.arms,
+        "robot": config.robot,
+        "schedule": config.schedule,
+        "structure": config.structure.name,
+        "size": config.structure.size_text(),
+        "arms": config.arms,
         "spawn_jitter_mm": value_text(config.spawn_jitter_mm),
         **{a.name: value_text(a.values[0]) for a in full if len(a.values) == 1},
     }
@@ -81,11 +85,21 @@ def plot_label(config: SweepConfig) -> str:
     the swept parameters (or `point`), the held ones not at their defaults, spawn jitter."""
     full = config.full_axes()
     swept = "+".join(a.name for a in full if len(a.values) > 1) or "point"
-    held = [f"{a.name}={value_text(a.values[0])}" for a in full
-            if len(a.values) == 1 and a.values[0] != param(a.name).default]
-    parts = [config.robot, config.schedule, config.structure.name,
-             config.structure.size_text(), config.arms, swept, *held,
-             f"jitter={config.spawn_jitter_mm:g}"]
+    held = [
+        f"{a.name}={value_text(a.values[0])}"
+        for a in full
+        if len(a.values) == 1 and a.values[0] != param(a.name).default
+    ]
+    parts = [
+        config.robot,
+        config.schedule,
+        config.structure.name,
+        config.structure.size_text(),
+        config.arms,
+        swept,
+        *held,
+        f"jitter={config.spawn_jitter_mm:g}",
+    ]
     return "_".join(re.sub(r"[^A-Za-z0-9.=+-]+", "-", p) for p in parts)
 
 
@@ -115,9 +129,7 @@ def axis_values(rows: list[SweepRow], axis: Axis) -> tuple[float, ...]:
     return tuple(sorted({*axis.values, *(float(r[axis.name]) for r in rows)}))
 
 
-def cells(
-    rows: list[SweepRow], x: Axis, y: Axis | None
-) -> dict[tuple[str, str | None], CellStats]:
+def cells(rows: list[SweepRow], x: Axis, y: Axis | None) -> dict[tuple[str, str | None], CellStats]:
     """Statistics per (x, y) cell, folding repeats and any other varying parameter."""
     groups: dict[tuple[str, str | None], list[SweepRow]] = {}
     for r in rows:
@@ -135,71 +147,25 @@ def summary_table(rows: list[SweepRow], config: SweepConfig) -> str:
     lines = [header]
     for spec_values in sorted(groups, key=lambda k: tuple(float(v) for v in k)):
         s = _stats(groups[spec_values])
-        lines.append([*spec_values, f"{s.succeeded}/{s.runs}", _fmt(s.worst_error_mm), _fmt(s.max_slip_mm)])
+        lines.append(
+            [
+                *spec_values,
+                f"{s.succeeded}/{s.runs}",
+                cell_text(s.worst_error_mm),
+                cell_text(s.max_slip_mm),
+            ]
+        )
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
     return "\n".join("  ".join(c.rjust(w) for c, w in zip(line, widths)) for line in lines)
 
 
-def _fmt(v: float) -> str:
+def cell_text(v: float) -> str:
     if math.isnan(v):
         return MISSING
     return "not placed" if math.isinf(v) else f"{v:.2f}"
 
 
-def write_heatmaps(rows: list[SweepRow], config: SweepConfig, path: Path) -> None:
-    """Success rate, worst placement error and max slip over the two main axes, as a PNG
-    written atomically. Errors beyond the placing tolerance, and bricks never placed, show in
-    the colour map's 'over' colour so the envelope's edge stands out."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib import patheffects
-
-    x, y = config.plot_axes()
-    stats = cells(rows, x, y)
-    xs = [value_text(v) for v in axis_values(rows, x)]
-    ys = [value_text(v) for v in axis_values(rows, y)] if y else [None]
-    panels = [
-        ("success rate", lambda s: s.rate, "RdYlGn", 0.0, 1.0,
-         lambda s: f"{s.succeeded}/{s.runs}"),
-        ("worst placement error (mm)", lambda s: s.worst_error_mm, "viridis", 0.0,
-         Tolerances().xy_mm, lambda s: _fmt(s.worst_error_mm)),
-        ("max slip in the hand (mm)", lambda s: s.max_slip_mm, "viridis", 0.0, SLIP_SCALE_MM,
-         lambda s: _fmt(s.max_slip_mm)),
-    ]
-    fig, axes = plt.subplots(
-        1, 3, figsize=(4.2 * 3 + 1, 1.2 + 0.65 * len(ys) + 1.6), constrained_layout=True
-    )
-    for ax, (title, value, cmap_name, vmin, vmax, label) in zip(axes, panels):
-        grid = np.full((len(ys), len(xs)), np.nan)
-        for i, yv in enumerate(ys):
-            for j, xv in enumerate(xs):
-                if (xv, yv) in stats:
-                    grid[i, j] = value(stats[(xv, yv)])
-        cmap = matplotlib.colormaps[cmap_name].with_extremes(over="#d7301f", bad="#bdbdbd")
-        shown = np.where(np.isinf(grid), vmax * 10, grid)
-        image = ax.imshow(np.ma.masked_invalid(shown), origin="lower", cmap=cmap, vmin=vmin,
-                          vmax=vmax, aspect="auto")
-        for i, yv in enumerate(ys):
-            for j, xv in enumerate(xs):
-                text = label(stats[(xv, yv)]) if (xv, yv) in stats else "not run"
-                ax.text(j, i, text, ha="center", va="center", fontsize=8 if len(text) < 7 else 6.5,
-                        color="white",
-                        path_effects=[patheffects.withStroke(linewidth=2, foreground="black")])
-        ax.set_xticks(range(len(xs)), xs)
-        ax.set_xlabel(x.label)
-        ax.set_yticks(range(len(ys)), ys if y else [""])
-        ax.set_ylabel(y.label if y else "")
-        ax.set_title(title)
-        _draw_coulomb_limit(ax, config, x, y)
-        fig.colorbar(image, ax=ax, extend="neither" if title == "success rate" else "max")
-    fig.suptitle(plot_title(config, x, y, rows))
-    save_plot(fig, path, config, "heatmaps over " + " and ".join(a.label for a in (x, y) if a))
-
-
-def save_plot(fig: "Figure", path: Path, config: SweepConfig, what: str) -> None:
+def save_plot(fig: Figure, path: Path, config: SweepConfig, what: str) -> None:
     """Write the figure as a PNG, atomically, naming its group and what it shows in its text
     chunks (the group is how a later sweep tells its own plot from another's); closes it."""
     import matplotlib.pyplot as plt
@@ -215,8 +181,9 @@ def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[SweepRow
     """What the plot shows: the group (robot, schedule, structure), the runs a point, and the
     parameters held or folded."""
     fixed = ", ".join(
-        f"{a.label} {value_text(a.values[0])}" for a in config.full_axes() if len(a.values) == 1
-        and a.name not in (x.name, y.name if y else None)
+        f"{a.label} {value_text(a.values[0])}"
+        for a in config.full_axes()
+        if len(a.values) == 1 and a.name not in (x.name, y.name if y else None)
     )
     folded = [a.label for a in config.full_axes() if len(a.values) > 1 and a not in (x, y)]
     per_point: dict[tuple[str, ...], int] = {}
@@ -228,36 +195,7 @@ def plot_title(config: SweepConfig, x: Axis, y: Axis | None, rows: list[SweepRow
     return (
         f"{config.robot}, {config.schedule}: {config.structure.name} "
         f"({config.structure.size_text()}, arms {config.arms}), {runs} run(s) a point, "
-        f"spawn jitter {config.spawn_jitter_mm:g} mm" + (f"; {fixed}" if fixed else "")
+        f"spawn jitter {config.spawn_jitter_mm:g} mm"
+        + (f"; {fixed}" if fixed else "")
         + (f"; cells fold {', '.join(folded)}" if folded else "")
     )
-
-
-GRAVITY = 9.81
-
-
-def coulomb_mass_limit(grip_force: Any, pad_friction: float) -> Any:
-    """The heaviest brick (kg) two pads pressing with `grip_force` each can hold at rest:
-    2 mu F / g, Coulomb's law (element-wise for an array of forces)."""
-    return 2.0 * pad_friction * grip_force / GRAVITY
-
-
-def _draw_coulomb_limit(ax, config: SweepConfig, x: Axis, y: Axis | None) -> None:
-    """On a grip force x brick mass map (either way round, pad friction held), the line
-    where the bricks' weight equals the pads' friction at rest, in the cells' coordinates."""
-    import numpy as np
-
-    if y is None or {x.name, y.name} != {"grip_force", "brick_mass"}:
-        return
-    pad = next(a for a in config.full_axes() if a.name == "pad_friction")
-    if len(pad.values) != 1 or any(np.any(np.diff(a.values) <= 0) for a in (x, y)):
-        return  # one line only for one pad friction, and on ordered axes
-    force_axis, mass_axis = (x, y) if x.name == "grip_force" else (y, x)
-    forces = np.linspace(force_axis.values[0], force_axis.values[-1], 100)
-    masses = coulomb_mass_limit(forces, pad.values[0])
-    fi = np.interp(forces, force_axis.values, range(len(force_axis.values)))
-    mi = np.interp(masses, mass_axis.values, range(len(mass_axis.values)), left=np.nan, right=np.nan)
-    xs, ys = (fi, mi) if x is force_axis else (mi, fi)
-    ax.plot(xs, ys, color="white", linestyle="--", linewidth=1.5,
-            label=f"Coulomb limit 2 mu F / g (mu {pad.values[0]:g})")
-    ax.legend(loc="upper left", fontsize=7, framealpha=0.6)

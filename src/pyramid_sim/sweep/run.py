@@ -4,12 +4,14 @@ the chosen backend, append each row as it lands, then draw the group's plot (`sw
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable
 
-from .backends import RunResult, run_processes, run_ray
+from .backends import RunResult, run_processes
 from .grid import SweepConfig, value_text
-from .report import grid_rows, group_rows, plot_path, summary_table, write_heatmaps
+from .heatmaps import write_heatmaps
+from .ray_backend import run_ray
+from .report import grid_rows, group_rows, plot_path, summary_table
 from .store import SweepRow, SweepStore
 
 

@@ -12,17 +12,32 @@ import csv
 import io
 import math
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 from ..errors import ConfigError
 from ..params import PARAMS
 
-KEY_COLUMNS = ("robot", "schedule", "structure", "size", "arms", *(p.name for p in PARAMS), "spawn_jitter_mm", "seed")
+KEY_COLUMNS = (
+    "robot",
+    "schedule",
+    "structure",
+    "size",
+    "arms",
+    *(p.name for p in PARAMS),
+    "spawn_jitter_mm",
+    "seed",
+)
 # BuildResult fields copied into each row, then the run's own wall time and failure reason.
 RESULT_FIELDS = (
-    "success", "bricks_placed", "bricks_total", "drops", "max_slip_mm", "worst_error_xy_mm",
+    "success",
+    "bricks_placed",
+    "bricks_total",
+    "drops",
+    "max_slip_mm",
+    "worst_error_xy_mm",
     "sim_time_s",
 )
 RESULT_COLUMNS = (*RESULT_FIELDS, "wall_time_s", "failure_reason")

@@ -3,7 +3,7 @@ scene's MjSpec."""
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import mujoco
 

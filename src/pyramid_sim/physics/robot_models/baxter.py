@@ -44,10 +44,14 @@ SLOT_4 = 0.0175  # m: a finger's mount off the gripper's centre line, (slot - 1)
 PADDLE = {"size": [0.021, 0.00325, 0.0185], "pos": (0.0, 0.0045, -0.015)}  # the tip's box
 # Body pairs that touch by construction, per arm ("{s}" the side, "{g}" the gripper's letter).
 EXCLUDED = (
-    ("torso", "{s}_upper_shoulder"), ("torso", "{s}_lower_shoulder"),
-    ("torso", "{s}_upper_elbow"), ("{s}_upper_shoulder", "{s}_upper_elbow"),
-    ("{s}_lower_elbow", "{s}_upper_elbow_visual"), ("{s}_upper_forearm", "{s}_upper_elbow_visual"),
-    ("{s}_lower_forearm", "{s}_upper_forearm_visual"), ("{s}_wrist", "{s}_upper_forearm_visual"),
+    ("torso", "{s}_upper_shoulder"),
+    ("torso", "{s}_lower_shoulder"),
+    ("torso", "{s}_upper_elbow"),
+    ("{s}_upper_shoulder", "{s}_upper_elbow"),
+    ("{s}_lower_elbow", "{s}_upper_elbow_visual"),
+    ("{s}_upper_forearm", "{s}_upper_elbow_visual"),
+    ("{s}_lower_forearm", "{s}_upper_forearm_visual"),
+    ("{s}_wrist", "{s}_upper_forearm_visual"),
     ("{g}_gripper_l_finger", "{g}_gripper_r_finger"),
 )
 
@@ -87,7 +91,8 @@ def _fit_gripper(spec: mujoco.MjSpec, side: str, arm: ArmDescription) -> None:
             if visual.type == mujoco.mjtGeom.mjGEOM_MESH:
                 visual.meshname = _paddle_mesh(spec)
     equality = spec.add_equality(
-        type=mujoco.mjtEq.mjEQ_JOINT, name1=local(arm.finger_joints[0]),
+        type=mujoco.mjtEq.mjEQ_JOINT,
+        name1=local(arm.finger_joints[0]),
         name2=local(arm.finger_joints[1]),
     )
     equality.data[:5] = [0.0, -1.0, 0.0, 0.0, 0.0]  # right = -left: the fingers move as one
@@ -105,7 +110,9 @@ def add_baxter(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) 
     for side, arm in robot.arms.items():
         g = side[0]
         for first, second in EXCLUDED:
-            body.add_exclude(bodyname1=first.format(s=side, g=g), bodyname2=second.format(s=side, g=g))
+            body.add_exclude(
+                bodyname1=first.format(s=side, g=g), bodyname2=second.format(s=side, g=g)
+            )
         add_servos(body, arm, ARMATURE)
         mount = body.body(local(arm.root_body))
         for link in _subtree(mount):

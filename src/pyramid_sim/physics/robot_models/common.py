@@ -92,7 +92,8 @@ def add_gripper_servo(
     for joint_name, sign in zip(arm.finger_joints, robot.finger_signs):
         tendon.wrap_joint(local(joint_name), float(sign))
     act = spec.add_actuator(
-        name=local(arm.gripper_actuator), target=local(arm.gripper_actuator) + "_gap",
+        name=local(arm.gripper_actuator),
+        target=local(arm.gripper_actuator) + "_gap",
         trntype=mujoco.mjtTrn.mjTRN_TENDON,
     )
     act.set_to_position(kp=grip.stiffness, kv=GRIPPER_DAMPING)

@@ -77,8 +77,16 @@ def _add_visual_meshes(spec: mujoco.MjSpec) -> None:
             if spec.mesh(mesh) is None:
                 spec.add_mesh(name=mesh, file=str(VISUALS / file))
             geom.parent.add_geom(
-                type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh, pos=geom.pos, quat=geom.quat,
-                contype=0, conaffinity=0, group=VISUAL_GROUP, rgba=rgba, density=0, mass=0,
+                type=mujoco.mjtGeom.mjGEOM_MESH,
+                meshname=mesh,
+                pos=geom.pos,
+                quat=geom.quat,
+                contype=0,
+                conaffinity=0,
+                group=VISUAL_GROUP,
+                rgba=rgba,
+                density=0,
+                mass=0,
             )
 
 
@@ -102,8 +110,11 @@ def add_panda_pair(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescripti
     for name, arm in robot.arms.items():
         x, y, z = arm.base
         spec.worldbody.add_geom(
-            name=f"{name}_pedestal", type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[*PEDESTAL, 0],
-            pos=[x, y, z - PEDESTAL[1]], material="pedestal",
+            name=f"{name}_pedestal",
+            type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+            size=[*PEDESTAL, 0],
+            pos=[x, y, z - PEDESTAL[1]],
+            material="pedestal",
         )
         frame = spec.worldbody.add_frame(pos=list(arm.base))
         spec.attach(arm_spec(arm, robot, config), prefix=f"{name}/", frame=frame)

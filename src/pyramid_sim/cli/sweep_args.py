@@ -1,0 +1,100 @@
+"""The sweep's flags: a grid flag per row of the parameter table and the run options, turned
+into a SweepConfig."""
+
+from __future__ import annotations
+
+import argparse
+import os
+from pathlib import Path
+
+from ..config import SimConfig
+from ..params import PARAMS
+from ..sweep.grid import SweepConfig, parse_axis
+from .args import (
+    add_out_args,
+    add_schedule_arg,
+    add_structure_args,
+    number,
+    one_of,
+    spec_from_args,
+    whole,
+)
+
+SWEEP_JITTER_MM = 2.0  # a sweep's spawned bricks land up to this far off the spot by default
+
+
+def add_sweep_axes(p: argparse.ArgumentParser) -> None:
+    """One grid flag per row of the parameter table."""
+    for param in PARAMS:
+        p.add_argument(
+            param.flag,
+            dest=param.name,
+            metavar="GRID",
+            help=f"{param.label}, start:stop:count or a,b,c; accepted values "
+            f"{param.range_text} (default {param.default:g})",
+        )
+
+
+def add_sweep_args(p: argparse.ArgumentParser) -> None:
+    add_sweep_axes(p)
+    add_schedule_arg(p)
+    add_structure_args(p)
+    p.add_argument(
+        "--repeats",
+        type=whole("repeats"),
+        default=1,
+        help="runs a point, seeds 0, 1, ... of the spawn jitter (1 to 100, default 1)",
+    )
+    p.add_argument(
+        "--spawn-jitter",
+        type=number("spawn jitter"),
+        default=SWEEP_JITTER_MM,
+        metavar="MM",
+        help=f"spawned bricks land up to MM off the spot, [0, 10] (default {SWEEP_JITTER_MM:g})",
+    )
+    p.add_argument(
+        "--workers",
+        type=whole("workers"),
+        default=os.cpu_count() or 1,
+        help="runs at once (default: the CPU count)",
+    )
+    p.add_argument(
+        "--timeout",
+        type=number("timeout"),
+        default=900.0,
+        help="seconds a run may take before it is stopped and failed (default 900)",
+    )
+    p.add_argument(
+        "--backend",
+        type=one_of("backend", ("process", "ray")),
+        default="process",
+        metavar="process|ray",
+        help="process (worker processes on this machine, default) or ray",
+    )
+    p.add_argument(
+        "--ray-address",
+        help="with --backend ray: an existing Ray cluster (default: start one here)",
+    )
+    add_out_args(p, Path("runs/sweep"))
+
+
+def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
+    """The sweep's grid and settings; ConfigError for a bad grid or option."""
+    axes = tuple(
+        parse_axis(p.name, getattr(args, p.name))
+        for p in PARAMS
+        if getattr(args, p.name) is not None
+    )
+    return SweepConfig(
+        axes=axes,
+        structure=spec_from_args(args, SimConfig()),
+        arms=args.arms,
+        repeats=args.repeats,
+        robot=args.robot,
+        schedule=args.schedule,
+        spawn_jitter_mm=args.spawn_jitter,
+        workers=args.workers,
+        timeout=args.timeout,
+        backend=args.backend,
+        ray_address=args.ray_address,
+    )
