@@ -9,7 +9,6 @@ from pyramid_sim import ConfigError
 from pyramid_sim.config import BrickConfig
 from pyramid_sim.core.brick_manager import (
     SEED_WALL_TOLERANCE,
-    goal_manager_server3,
     towers,
     wall,
     wall_pyramid,
@@ -21,6 +20,45 @@ from pyramid_sim.resources import GOALS
 
 SEED_BRICK = BrickConfig(length=0.2, width=0.09, height=0.06)  # goal_manager_server2/3's brick
 TABLE_Z = 0.11
+
+
+# The seed's own function, as its authors wrote it: the reference `wall_pyramid` is held to.
+def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[float]]:
+    """The seed's `goal_manager_server3` wall pyramid, its own numbers: a parallelogram of
+    bricks end to end along x (pitch blength + tol, courses bheight + tol apart, each course
+    shifted by half a brick), with the overhanging ends of each course peeled away. The seed
+    spelled out heights 1 to 5 by hand; this follows the same rule for any height (the loop's
+    length, not shown in the seed, is one course per height)."""
+    bstart = [1, -0.8, 0.116, 0, 0, math.pi / 2]
+    blength, bheight = 0.2 + SEED_WALL_TOLERANCE, 0.06 + SEED_WALL_TOLERANCE
+    square_number = wall_base_width * wall_height
+    pyramid_seperate = []
+    xnos = znos = offset = 0
+    for _ in range(0, square_number):
+        pyramid_seperate.append(
+            [
+                round(bstart[0] + xnos * blength + offset * (blength / 2), 3),
+                bstart[1],
+                round(bstart[2] + znos * bheight, 3),
+                bstart[3],
+                bstart[4],
+                bstart[5],
+            ]
+        )
+        if xnos < wall_base_width - 1:
+            xnos += 1
+        else:
+            xnos = 0
+            znos += 1
+            offset += 1
+    if wall_height == 1:
+        return pyramid_seperate
+    # The seed's peel, generalised: the first slice keeps the base course and the first brick
+    # of the next (its `[:(w*2)-1]`), each later slice the k-th course minus its last k bricks.
+    pos_final = pyramid_seperate[: (wall_base_width * 2) - 1]
+    for k in range(2, wall_height):
+        pos_final += pyramid_seperate[wall_base_width * k : wall_base_width * (k + 1) - k]
+    return pos_final
 
 
 def _seed_peel(w: int, h: int) -> list:

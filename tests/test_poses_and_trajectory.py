@@ -10,7 +10,6 @@ from pyramid_sim.core.poses import (
     quat_to_matrix,
     symmetric_yaw_error,
     tcp_quaternion,
-    tcp_rotation,
     yaw_of,
 )
 from pyramid_sim.core.primitives import lift_speed, pick_steps, place_steps
@@ -21,6 +20,13 @@ from pyramid_sim.core.trajectory import (
     plan_segment,
     turned_within,
 )
+
+
+# The tool frame as a matrix, Rz(yaw) Rx(pi): what `tcp_quaternion` is held to.
+def tcp_rotation(yaw: float) -> np.ndarray:
+    """Rotation matrix of a downward-pointing tool frame with the given yaw: Rz(yaw) Rx(pi)."""
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return np.array([[cy, sy, 0.0], [sy, -cy, 0.0], [0.0, 0.0, -1.0]])
 
 
 def test_tcp_rotation_points_down_with_its_yaw():

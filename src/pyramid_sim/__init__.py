@@ -1,7 +1,9 @@
 """pyramid_sim: two robot arms build brick structures in MuJoCo, after Robot DE NIRO.
 
 Importing the package loads only the pure core (no MuJoCo): `plan` works anywhere, `build`
-brings in the physics when it is called.
+brings in the physics when it is called. `create_coordinates` and `create_coordinates_new` are
+DE NIRO's own generators with its own numbers, public so a user can set a structure beside the
+seed's; `pyramid` and `pyramid_even` are the resting targets built from them.
 """
 
 from .api import build, plan, settings, structure

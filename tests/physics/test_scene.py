@@ -21,7 +21,8 @@ def test_scene_holds_two_pandas_a_table_and_the_magazine():
             assert model.actuator(joint).forcerange[1] == torque
         finger = model.joint(PANDA.arms[arm].finger_joints[0])
         assert finger.range[1] == 0.04  # the real hand's: the brick is spanned with spacers
-    assert model.geom(c.TABLE_GEOM) is not None
+    table = model.geom(c.TABLE_GEOM)  # the table top the bricks rest on: a colliding box
+    assert table.type[0] == mujoco.mjtGeom.mjGEOM_BOX and table.contype[0] and table.conaffinity[0]
     assert sum(model.body(i).name.endswith("/brick") for i in range(model.nbody)) == 5
 
 

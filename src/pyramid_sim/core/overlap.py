@@ -51,7 +51,7 @@ class OverlapScheduler:
         return self._tasks[arm]
 
     def holder(self, zone: str) -> str | None:
-        """The arm holding `zone`, if any."""
+        """The arm holding `zone`, if any: what a schedule stepped by hand (or a test) reads."""
         held = self._holder[zone]
         return held.arm if held is not None else None
 

@@ -54,19 +54,13 @@ def grasp_yaw(brick_yaw: float, reference: float) -> float:
     return min(candidates, key=lambda y: (round(abs(wrap_angle(y - reference)), 4), -y))
 
 
-def tcp_rotation(yaw: float) -> np.ndarray:
-    """Rotation matrix of a downward-pointing tool frame with the given yaw: Rz(yaw) Rx(pi)."""
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return np.array([[cy, sy, 0.0], [sy, -cy, 0.0], [0.0, 0.0, -1.0]])
-
-
 def yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
     """A turn by `yaw` about the vertical as a unit quaternion (w, x, y, z): a brick lying flat."""
     return (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
 
 
 def tcp_quaternion(yaw: float) -> tuple[float, float, float, float]:
-    """`tcp_rotation(yaw)` as a unit quaternion (w, x, y, z): Rz(yaw) Rx(pi), worked out."""
+    """The downward tool frame turned by `yaw`, Rz(yaw) Rx(pi), as a unit quaternion (w, x, y, z)."""
     return (0.0, math.cos(yaw / 2), math.sin(yaw / 2), 0.0)
 
 

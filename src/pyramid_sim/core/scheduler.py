@@ -63,12 +63,12 @@ class LockstepScheduler:
         self._tasks: dict[str, Task] = {}
         self._done: set[str] = set()
         self._outside: set[str] = set()
-        self.phases_run = 0
         self._advance()
 
     @property
     def phase(self) -> int:
-        """Current phase, 1 to 4 as in the seed (0 once finished)."""
+        """Current phase, 1 to 4 as in the seed (0 once finished): where a schedule stepped by
+        hand (or a test) stands."""
         return 0 if self.finished else self._phase + 1
 
     @property
@@ -131,7 +131,6 @@ class LockstepScheduler:
                 other(worker): Task(other(worker), Action.CLEAR),
             }
             self._done = set()
-            self.phases_run += 1
             return
         self._tasks = {}
 
