@@ -33,7 +33,24 @@ from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
 
+ENV_ID = "pyramid_sim/Build-v0"
+
+
+def _register_env() -> None:
+    """`gymnasium.make(ENV_ID, ...)` builds a BuildEnv. Only strings are registered: MuJoCo
+    loads when an environment is made."""
+    try:
+        import gymnasium
+    except ImportError:  # gymnasium is a dependency; a trimmed install still imports
+        return
+    if ENV_ID not in gymnasium.registry:
+        gymnasium.register(id=ENV_ID, entry_point="pyramid_sim.learning.env:BuildEnv")
+
+
+_register_env()
+
 __all__ = [
+    "ENV_ID",
     "PARAMS",
     "STRUCTURES",
     "Action",

@@ -83,7 +83,7 @@ def structure(
     )
 
 
-def _resolve(
+def resolve(
     name: str, config: SimConfig | None, options: dict[str, Any], own: tuple[str, ...]
 ) -> tuple[SimConfig, StructureSpec]:
     """Settings and structure from one set of keywords: the size options (SIZE_KEYWORDS) go
@@ -106,7 +106,7 @@ def plan(
     """The build plan: every brick's target, arm and order, and the spawn pose. `options` are
     the structure's size (layers, bricks, width, towers, goals) and settings. No physics (and
     no reach check: `build` does that)."""
-    config, spec = _resolve(name, config, options, own=("arms",))
+    config, spec = resolve(name, config, options, own=("arms",))
     return make_plan(spec, config, arms)
 
 
@@ -124,9 +124,7 @@ def build(
     `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
     headless (whether or not MuJoCo was imported first), and a machine without a headless GL
     backend is refused before any physics runs."""
-    config, spec = _resolve(
-        name, config, options, own=("arms", "video", "snapshot", "video_config")
-    )
+    config, spec = resolve(name, config, options, own=("arms", "video", "snapshot", "video_config"))
     outputs = {".mp4": video, ".png": snapshot}
     for suffix, path in outputs.items():
         if path is not None and Path(path).suffix.lower() != suffix:

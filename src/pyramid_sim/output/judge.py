@@ -12,7 +12,7 @@ from ..choices import ARMS
 from ..config import SimConfig
 from ..core.measurements import Measurements
 from ..core.plan import Plan
-from ..core.poses import quat_to_matrix, symmetric_yaw_error, tilt_of, yaw_of
+from ..core.poses import Pose, quat_to_matrix, symmetric_yaw_error, tilt_of, yaw_of
 from .result import (
     BrickResult,
     BuildInputs,
@@ -61,12 +61,7 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
             )
             continue
         pos, quat = measured.final_pos[slot], measured.final_quat[slot]
-        rot = quat_to_matrix(quat)
-        err = pos - pose.position
-        xy = round(float(np.hypot(err[0], err[1]) * 1000), 3)
-        z = round(float(err[2] * 1000), 3)
-        yaw = round(math.degrees(symmetric_yaw_error(yaw_of(rot), pose.yaw)), 3)
-        tilt = round(math.degrees(tilt_of(rot)), 3)
+        xy, z, yaw, tilt = (round(e, 3) for e in placement_errors(pos, quat, pose))
         rows.append(
             BrickResult(
                 **common,
@@ -76,13 +71,35 @@ def judge_bricks(measured: Measurements, tol: Tolerances) -> tuple[BrickResult, 
                 yaw_error_deg=yaw,
                 tilt_deg=tilt,
                 knocked_off=any(k.slot == slot for k in measured.knocks),
-                placed=xy <= tol.xy_mm
-                and abs(z) <= tol.z_mm
-                and yaw <= tol.yaw_deg
-                and tilt <= tol.tilt_deg,
+                placed=within(tol, xy, z, yaw, tilt),
             )
         )
     return tuple(rows)
+
+
+def placement_errors(
+    position: np.ndarray, quat: np.ndarray, target: Pose
+) -> tuple[float, float, float, float]:
+    """How far a brick lies from its target: across (mm), in height (mm, signed), in yaw
+    (degrees, a brick turned half round lies the same) and its tilt (degrees)."""
+    rot = quat_to_matrix(quat)
+    err = position - target.position
+    return (
+        float(np.hypot(err[0], err[1]) * 1000),
+        float(err[2] * 1000),
+        math.degrees(symmetric_yaw_error(yaw_of(rot), target.yaw)),
+        math.degrees(tilt_of(rot)),
+    )
+
+
+def within(tol: Tolerances, xy_mm: float, z_mm: float, yaw_deg: float, tilt_deg: float) -> bool:
+    """A brick with these errors is in place."""
+    return (
+        xy_mm <= tol.xy_mm
+        and abs(z_mm) <= tol.z_mm
+        and yaw_deg <= tol.yaw_deg
+        and tilt_deg <= tol.tilt_deg
+    )
 
 
 FINGER_GIVE_MM = 0.1  # a finger joint's soft limit gives this much under the squeeze

@@ -1,0 +1,186 @@
+"""The build as a Gymnasium environment: one episode is one build of a structure by two arms.
+
+A step is one control step of the build's own loop (`BuildLoop.apply`): the action is both
+arms' joint targets and finger gaps (`layout.Layout`), ramped across the physics substeps as
+the scripted builder's are. `expert_action()` is the scripted builder's next action (scheduler,
+primitives, mink IK: `BuildLoop.expert_command`); rolled out from `reset(seed=s)` it builds the
+structure as `pyramid-sim build --seed s` does. The expert plans as if it had driven every step
+it was asked for: ask it once a step to follow it.
+
+Reward: +1 for each brick that comes to rest on its target within the build's tolerances.
+Terminated on success (every target holds a brick at rest) or failure (`info["failure"]` says
+which: a brick off the table, arm-arm contact, a joint past its speed or torque limit, or what
+stops a build); truncated at the build's time limit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+
+from ..api import resolve
+from ..choices import ArmChoice
+from ..output.judge import judge, placement_errors, within
+from ..output.result import Tolerances
+from ..physics.loop import BuildLoop
+from ..physics.reach import prepare
+from . import layout as lay
+
+REST_SPEED = 1e-3  # m/s: a brick slower than this is at rest
+OFF_TABLE = 0.05  # m below the table top: a brick down there has left it
+
+
+class BuildEnv(gymnasium.Env):
+    """Two arms build `structure`; keywords as `pyramid_sim.build` takes them."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
+
+    def __init__(
+        self,
+        structure: str = "pyramid-even",
+        *,
+        arms: ArmChoice = "both",
+        render_mode: str | None = None,
+        render_size: tuple[int, int] = (480, 640),
+        **options: Any,
+    ) -> None:
+        self.config, spec = resolve(structure, None, dict(options), own=("arms",))
+        self.plan = prepare(spec, self.config, arms)
+        self.render_mode = render_mode
+        self.render_size = render_size
+        self.tolerances = Tolerances()
+        self._loop = self._new_loop(self.config.seed)
+        self.layout = lay.layout(
+            self._loop.model, self._loop.handles, self.config.robot_description
+        )
+        n = self.layout.bricks
+        self.action_space = spaces.Box(self.layout.low, self.layout.high, dtype=np.float64)
+        self.observation_space = spaces.Dict(
+            {
+                "state": spaces.Box(-np.inf, np.inf, (self.layout.size,), dtype=np.float64),
+                "bricks": spaces.Box(-np.inf, np.inf, (n, len(lay.BRICK_FIELDS)), dtype=np.float64),
+            }
+        )
+        self._state = np.zeros(self.layout.size)
+        self._placed: set[int] = set()
+        self._renderer: Any = None
+        self._expert_done = False
+
+    def _new_loop(self, seed: int) -> BuildLoop:
+        return BuildLoop.of(self.plan, replace(self.config, seed=seed))
+
+    # --- the Gymnasium API ---------------------------------------------------------------
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+        """A new build from the start, its spawn jitter drawn from `seed` (the settings' seed
+        when None)."""
+        super().reset(seed=seed)
+        self._loop = self._new_loop(self.config.seed if seed is None else seed)
+        self._placed = set()
+        self._expert_done = False
+        return self._observe(), {"sim_time_s": 0.0, "bricks_placed": 0}
+
+    def step(
+        self, action: np.ndarray
+    ) -> tuple[dict[str, np.ndarray], float, bool, bool, dict[str, Any]]:
+        command = np.clip(np.asarray(action, dtype=np.float64), self.layout.low, self.layout.high)
+        failure = self._loop.apply(command)
+        newly = self._newly_placed()
+        failure = failure or self._broken()
+        success = len(self._placed) == len(self.plan.bricks)
+        truncated = (
+            failure is None and not success and self._loop.data.time >= self.config.max_sim_time
+        )
+        terminated = success or (failure is not None and not truncated)
+        info: dict[str, Any] = {
+            "sim_time_s": float(self._loop.data.time),
+            "bricks_placed": len(self._placed),
+            "failure": failure,
+            "is_success": success,
+        }
+        if terminated or truncated:
+            info["result"] = judge(self._loop.finish(failure, 0.0), self._loop.config).to_dict()
+        return self._observe(), float(newly), terminated, truncated, info
+
+    def expert_action(self) -> np.ndarray:
+        """The scripted builder's action for this step; once it has built everything and its
+        arms are back, it holds them where they are."""
+        command = None if self._expert_done else self._loop.expert_command()
+        if command is None:
+            self._expert_done = True
+            return self._hold()
+        return command.copy()
+
+    def render(self) -> np.ndarray | None:
+        """The overview camera as an RGB array (render_mode "rgb_array")."""
+        if self.render_mode != "rgb_array":
+            return None
+        if self._renderer is None:
+            from ..output.gl_backend import choose_gl_backend
+            from ..output.renderer import HeadlessRenderer
+
+            height, width = self.render_size
+            self._renderer = HeadlessRenderer(self._loop.model, width, height, choose_gl_backend())
+        self._renderer.update_scene(self._loop.data, "overview")
+        return self._renderer.render()
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+    # --- what a step reads -----------------------------------------------------------------
+    def _observe(self) -> dict[str, np.ndarray]:
+        loop = self._loop
+        return {
+            "state": lay.state(loop.data, loop.handles, self._state).copy(),
+            "bricks": lay.bricks(loop.data, loop.handles),
+        }
+
+    def _hold(self) -> np.ndarray:
+        """The command that keeps both arms and hands as they are commanded now."""
+        loop = self._loop
+        return loop.data.ctrl[loop.handles.ctrl_index].copy()
+
+    def _newly_placed(self) -> int:
+        """Targets that have just come to hold a brick at rest within the tolerances."""
+        d, h = self._loop.data, self._loop.handles
+        newly = 0
+        for target in self.plan.bricks:
+            if target.index in self._placed:
+                continue
+            for slot in range(self._loop.spawner.next_slot):
+                q, v = h.brick_qpos[slot], h.brick_dofs[slot]
+                if np.linalg.norm(d.qvel[v : v + 3]) > REST_SPEED:
+                    continue
+                errors = placement_errors(
+                    d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], target.target.pose
+                )
+                if within(self.tolerances, *errors):
+                    self._placed.add(target.index)
+                    newly += 1
+                    break
+        return newly
+
+    def _broken(self) -> str | None:
+        """A failure the build's own stops do not end on at once."""
+        loop, top = self._loop, self.config.layout.table_top_z
+        monitor = loop.monitor
+        monitor.flush()
+        if monitor.arm_arm_contacts:
+            return f"arm-arm contact at t = {loop.data.time:.3f} s"
+        if monitor.speed_ratio > 1.0:
+            return f"a joint moved at {monitor.speed_ratio:.2f} of its velocity limit"
+        if monitor.torque_ratio > 1.0:
+            return f"a joint demanded {monitor.torque_ratio:.2f} of its torque limit"
+        for slot in range(loop.spawner.next_slot):  # every brick set on the spot so far
+            z = loop.data.qpos[loop.handles.brick_qpos[slot] + 2]
+            if z < top - OFF_TABLE or not math.isfinite(z):
+                return f"a brick (magazine slot {slot}) left the table"
+        return None

@@ -1,0 +1,68 @@
+"""What the learning side observes and commands, defined once for the environment and any
+recorder: the names and bounds of each entry, read from the robot's preset and the compiled
+model. The command is the loop's own: both arms' joint targets, then each hand's finger gap,
+arm by arm (`handles.ctrl_index` order)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from ..physics import names as c
+from ..physics.handles import SceneHandles
+from ..robots import RobotDescription
+
+BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Names and bounds of the state and the action (the same vector layout), and how many
+    bricks the magazine holds."""
+
+    names: tuple[str, ...]  # "left/panda_joint1", ..., "left/gripper", ..., "right/gripper"
+    low: np.ndarray
+    high: np.ndarray
+    bricks: int
+
+    @property
+    def size(self) -> int:
+        return len(self.names)
+
+
+def layout(model: mujoco.MjModel, handles: SceneHandles, robot: RobotDescription) -> Layout:
+    """The layout of a compiled scene: each arm's joints at their joint ranges, then its
+    gripper's finger gap from closed (0) to both fingers' full travel."""
+    names: list[str] = []
+    low: list[float] = []
+    high: list[float] = []
+    for arm in c.ARMS:
+        for joint in robot.arms[arm].joints:
+            lo, hi = model.joint(joint).range
+            names.append(f"{arm}/{joint.rsplit('/', 1)[-1]}")
+            low.append(float(lo))
+            high.append(float(hi))
+        names.append(f"{arm}/gripper")
+        low.append(0.0)
+        high.append(2 * robot.finger_stroke)
+    return Layout(tuple(names), np.array(low), np.array(high), handles.n_bricks)
+
+
+def state(data: mujoco.MjData, handles: SceneHandles, out: np.ndarray) -> np.ndarray:
+    """Both arms' joint positions and each hand's finger gap (its two fingers' travel), in
+    the layout's order, written into `out`."""
+    k = 0
+    for arm in c.ARMS:
+        q = handles.arm_qpos[arm]
+        out[k : k + len(q)] = data.qpos[q]
+        k += len(q)
+        out[k] = sum(abs(data.qpos[f]) for f in handles.finger_qpos[arm])
+        k += 1
+    return out
+
+
+def bricks(data: mujoco.MjData, handles: SceneHandles) -> np.ndarray:
+    """Every magazine brick's position and orientation (n x 7), in magazine order."""
+    return np.array([data.qpos[q : q + 7] for q in handles.brick_qpos])

@@ -1,0 +1,92 @@
+"""The build as a Gymnasium environment: it passes Gymnasium's own checker, the scripted
+expert rolled out in it builds what `build` builds, the same seed gives the same episode,
+random actions end an episode with a reason rather than an error, and two environments step
+side by side in an AsyncVectorEnv."""
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import pyramid_sim
+
+ENV = pyramid_sim.ENV_ID
+
+
+def _rollout(env, seed: int, steps: int | None = None):
+    """The expert's episode from `seed`: every observation's state and bricks, rewards, and
+    the last step's flags and info."""
+    obs, _ = env.reset(seed=seed)
+    states, rewards = [obs["state"]], []
+    n = 0
+    while True:
+        obs, reward, terminated, truncated, info = env.step(env.unwrapped.expert_action())
+        states.append(obs["state"])
+        rewards.append(reward)
+        n += 1
+        if terminated or truncated or (steps is not None and n >= steps):
+            return np.array(states), obs, rewards, terminated, truncated, info
+
+
+def test_gymnasiums_checker_passes():
+    env = gymnasium.make(ENV, structure="pyramid", layers=1)
+    check_env(env.unwrapped, skip_render_check=True)
+    env.close()
+
+
+def test_the_expert_builds_what_build_builds():
+    env = gymnasium.make(ENV, structure="pyramid-even", layers=2, robot="panda")
+    _, obs, rewards, terminated, truncated, info = _rollout(env, seed=3)
+    assert terminated and not truncated and info["is_success"] and info["failure"] is None
+    assert sum(rewards) == 6 and info["bricks_placed"] == 6
+    built = pyramid_sim.build("pyramid-even", layers=2, seed=3)
+    assert built.success
+    final = {b["index"]: b for b in info["result"]["bricks"]}
+    for brick in built.bricks:
+        ours = np.array(final[brick.index]["final"]["position"])
+        assert np.linalg.norm(ours - np.array(brick.final.position)) < 0.0005, brick.index
+    env.close()
+
+
+def test_the_same_seed_gives_the_same_episode_bit_for_bit():
+    env = gymnasium.make(ENV, structure="pyramid", layers=1)
+    first, obs1, rewards1, *_ = _rollout(env, seed=7, steps=400)
+    second, obs2, rewards2, *_ = _rollout(env, seed=7, steps=400)
+    assert np.array_equal(first, second) and rewards1 == rewards2
+    assert np.array_equal(obs1["bricks"], obs2["bricks"])
+    other, *_ = _rollout(env, seed=8, steps=400)  # the spawn jitter of another seed
+    assert other.shape == first.shape
+    env.close()
+
+
+def test_random_actions_end_an_episode_with_a_reason_never_an_error():
+    env = gymnasium.make(ENV, structure="pyramid", layers=1)
+    env.reset(seed=0)
+    env.action_space.seed(0)
+    ended = None
+    for _ in range(200):
+        obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
+        assert env.observation_space.contains(obs) and reward >= 0
+        if terminated or truncated:
+            ended = info
+            break
+    if ended is not None:  # a random arm flails: it ends naming why
+        assert ended["failure"] and "result" in ended and not ended["is_success"]
+    env.close()
+
+
+def test_two_environments_step_in_an_async_vector_env():
+    envs = gymnasium.vector.AsyncVectorEnv(
+        [lambda: gymnasium.make(ENV, structure="pyramid", layers=1)] * 2
+    )
+    obs, _ = envs.reset(seed=[1, 2])
+    assert obs["state"].shape == (2, 16) and obs["bricks"].shape[0] == 2
+    for _ in range(3):
+        obs, rewards, terminated, truncated, _ = envs.step(envs.action_space.sample())
+    assert rewards.shape == (2,) and not truncated.any()
+    envs.close()
+
+
+def test_a_bad_setting_is_refused_when_the_environment_is_made():
+    with pytest.raises(pyramid_sim.ConfigError, match="brick friction"):
+        gymnasium.make(ENV, structure="pyramid", layers=1, friction=-1)
