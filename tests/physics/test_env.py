@@ -90,3 +90,16 @@ def test_two_environments_step_in_an_async_vector_env():
 def test_a_bad_setting_is_refused_when_the_environment_is_made():
     with pytest.raises(pyramid_sim.ConfigError, match="brick friction"):
         gymnasium.make(ENV, structure="pyramid", layers=1, friction=-1)
+
+
+def test_rgb_array_renders_the_overview_camera():
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    env = gymnasium.make(
+        ENV, structure="pyramid", layers=1, render_mode="rgb_array", render_size=(120, 160)
+    )
+    env.reset(seed=0)
+    frame = env.render()
+    assert frame.shape == (120, 160, 3) and frame.dtype == np.uint8 and frame.mean() > 60
+    env.close()
