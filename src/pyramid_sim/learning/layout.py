@@ -63,6 +63,7 @@ def state(data: mujoco.MjData, handles: SceneHandles, out: np.ndarray) -> np.nda
     return out
 
 
-def bricks(data: mujoco.MjData, handles: SceneHandles) -> np.ndarray:
-    """Every magazine brick's position and orientation (n x 7), in magazine order."""
-    return np.array([data.qpos[q : q + 7] for q in handles.brick_qpos])
+def brick_index(handles: SceneHandles) -> np.ndarray:
+    """The qpos addresses of every magazine brick's position and orientation (n x 7, in
+    magazine order): `data.qpos[brick_index(h)]` is the `bricks` observation."""
+    return np.array([np.arange(q, q + 7) for q in handles.brick_qpos])
