@@ -15,6 +15,14 @@ if os.environ.get("PYRAMID_SIM_BLOCK_MUJOCO") == "1":
 _BUILDS: dict = {}
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _matplotlib_config_in_a_temporary_folder(tmp_path_factory):
+    """matplotlib makes ~/.config/matplotlib when first imported: the tests, and the commands
+    they run, use a folder of pytest's instead, so HOME keeps nothing of theirs."""
+    os.environ["MPLCONFIGDIR"] = str(tmp_path_factory.mktemp("matplotlib"))
+    yield
+
+
 def build_once(structure: str, layers: int):
     """Each default build is simulated once per session and shared by the tests that read it."""
     from pyramid_sim.config import SimConfig
