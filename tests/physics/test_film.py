@@ -133,3 +133,34 @@ def test_the_magazine_stays_at_rest_until_a_brick_is_spawned():
 
     loop.run(BuildHooks(on_step=watch))
     assert stop["at"] is not None and loop.spawner.next_slot < h.n_bricks
+
+
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_each_wrist_camera_has_its_brick_in_view_from_approach_to_release(robot):
+    """The brick an arm carries (or is about to grip) projects inside its wrist camera's
+    image at every control step from the pick's servo to the release."""
+    loop = _loop(robot)
+    model, data, h = loop.model, loop.data, loop.handles
+    arms = loop.config.robot_description.arms
+    cams = {a: model.camera(arms[a].wrist_camera).id for a in arms}
+    seen: dict[str, int] = {a: 0 for a in arms}
+
+    def in_view(arm: str, slot: int) -> bool:
+        cam = cams[arm]
+        p = data.xpos[h.brick_body[slot]] - data.cam_xpos[cam]
+        x, y, z = data.cam_xmat[cam].reshape(3, 3).T @ p
+        half = np.tan(np.radians(model.cam_fovy[cam]) / 2)
+        return z < 0 and abs(x / -z) < half and abs(y / -z) < half
+
+    def watch(d):
+        for arm in arms:
+            step = loop.step_of(arm)
+            carry = loop.custody.carry[arm]
+            if carry is not None:
+                assert in_view(arm, carry.slot), (arm, step.name if step else None, d.time)
+                seen[arm] += 1
+            elif step is not None and step.name == "servo" and loop.spawner.current is not None:
+                assert in_view(arm, loop.spawner.current), (arm, "servo", d.time)
+
+    loop.run(BuildHooks(on_step=watch))
+    assert all(n > 100 for n in seen.values()), seen

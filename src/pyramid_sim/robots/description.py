@@ -40,6 +40,11 @@ class ArmDescription:
     yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
     # and the clear pose this yaw, so the last wrist joint stays inside its range
 
+    @property
+    def wrist_camera(self) -> str:
+        """The camera on the hand, beside the tool centre point, looking along the fingers."""
+        return f"{self.tcp_site}_camera"
+
     def __post_init__(self) -> None:
         n = len(self.joints)
         for name in (

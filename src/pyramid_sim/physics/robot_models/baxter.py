@@ -31,6 +31,7 @@ from ...robots.baxter import PREFIX
 from .common import (
     add_gripper_servo,
     add_servos,
+    add_tool,
     hide_collision_geoms,
     local,
     tune_finger,
@@ -120,9 +121,7 @@ def add_baxter(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) 
         _fit_gripper(body, side, arm)
         tune_pads(body, [body.geom(local(p)) for p in arm.pads], config.gripper)
         add_gripper_servo(body, arm, robot, config.gripper)
-        body.body(f"{side}_gripper").add_site(
-            name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0]
-        )
+        add_tool(body.body(f"{side}_gripper"), arm)
     hide_collision_geoms(body)  # the URDF's visual meshes show the robot
     spec.attach(body, prefix=PREFIX, frame=spec.worldbody.add_frame(pos=[0.0, 0.0, 0.0]))
 

@@ -9,6 +9,7 @@ from functools import lru_cache
 from pathlib import Path
 
 import mujoco
+import numpy as np
 
 from ...config import GripperConfig
 from ...robots import ArmDescription, RobotDescription
@@ -42,6 +43,27 @@ def robots_dir() -> Path:
     """example-robot-data's robots folder (its Python module needs pinocchio: not used)."""
     dist = importlib.metadata.distribution("example-robot-data")
     return Path(str(dist.locate_file("cmeel.prefix/share/example-robot-data/robots")))
+
+
+# The wrist camera, in the tool frame (z out of the hand, fingers closing along y): behind the
+# fingertips and off to the side the fingers do not close along, looking past them to a point
+# ahead, so the brick is in view from approach to release.
+WRIST_CAMERA_AT = (0.11, 0.0, -0.09)  # m
+WRIST_CAMERA_LOOKS_AT = (0.0, 0.0, 0.05)  # m
+WRIST_CAMERA_FOVY = 75.0  # degrees
+
+
+def add_tool(body: mujoco.MjsBody, arm: ArmDescription) -> None:
+    """The arm's tool centre point (a site) and its wrist camera on the hand's `body`, whose
+    frame is the tool frame."""
+    body.add_site(name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0])
+    at, target = np.array(WRIST_CAMERA_AT), np.array(WRIST_CAMERA_LOOKS_AT)
+    back = (at - target) / np.linalg.norm(at - target)  # a camera looks along its -z
+    right = np.array([0.0, 1.0, 0.0])  # the fingers close across the image
+    up = np.cross(back, right)
+    body.add_camera(
+        name=local(arm.wrist_camera), pos=list(at), xyaxes=[*right, *up], fovy=WRIST_CAMERA_FOVY
+    )
 
 
 def local(name: str) -> str:

@@ -28,6 +28,7 @@ from .common import (
     VISUAL_GROUP,
     add_gripper_servo,
     add_servos,
+    add_tool,
     hide_collision_geoms,
     local,
     robots_dir,
@@ -59,9 +60,7 @@ def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) ->
     _fit_fingers(spec, arm, robot)
     tune_pads(spec, [spec.geom(local(p)) for p in arm.pads], config.gripper)
     add_gripper_servo(spec, arm, robot, config.gripper)
-    spec.body("panda_hand_tcp").add_site(
-        name=local(arm.tcp_site), size=[0.005, 0, 0], rgba=[0, 1, 0, 0]
-    )
+    add_tool(spec.body("panda_hand_tcp"), arm)
     hide_collision_geoms(spec)
     _add_visual_meshes(spec)
     return spec
