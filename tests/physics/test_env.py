@@ -103,3 +103,20 @@ def test_rgb_array_renders_the_overview_camera():
     frame = env.render()
     assert frame.shape == (120, 160, 3) and frame.dtype == np.uint8 and frame.mean() > 60
     env.close()
+
+
+def test_cameras_asked_for_are_observed_at_their_size():
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    cameras = ("overview", "left_wrist", "right_wrist")
+    env = gymnasium.make(ENV, structure="pyramid", layers=1, cameras=cameras, image_size=(48, 64))
+    obs, _ = env.reset(seed=0)
+    assert env.observation_space.contains(obs) and tuple(obs["images"]) == cameras
+    for image in obs["images"].values():
+        assert image.shape == (48, 64, 3) and image.dtype == np.uint8 and image.std() > 5
+    obs, *_ = env.step(env.unwrapped.expert_action())
+    assert set(obs["images"]) == set(cameras)
+    env.close()
+    with pytest.raises(pyramid_sim.ConfigError, match="cameras: unknown 'nose'"):
+        gymnasium.make(ENV, structure="pyramid", layers=1, cameras=("nose",))

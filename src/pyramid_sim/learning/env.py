@@ -49,9 +49,15 @@ class BuildEnv(gymnasium.Env):
         arms: ArmChoice = "both",
         render_mode: str | None = None,
         render_size: tuple[int, int] = (480, 640),
+        cameras: tuple[str, ...] = (),
+        image_size: tuple[int, int] = (224, 224),
         **options: Any,
     ) -> None:
-        self.config, spec = resolve(structure, None, dict(options), own=("arms",))
+        own = ("arms", "render_mode", "render_size", "cameras", "image_size")
+        self.config, spec = resolve(structure, None, dict(options), own=own)
+        self.cameras = tuple(cameras)
+        lay.check_cameras(self.cameras, self.config.robot_description)
+        self.image_size = image_size
         self.plan = prepare(spec, self.config, arms)
         self.render_mode = render_mode
         self.render_size = render_size
@@ -62,12 +68,18 @@ class BuildEnv(gymnasium.Env):
         )
         n = self.layout.bricks
         self.action_space = spaces.Box(self.layout.low, self.layout.high, dtype=np.float64)
-        self.observation_space = spaces.Dict(
-            {
-                "state": spaces.Box(-np.inf, np.inf, (self.layout.size,), dtype=np.float64),
-                "bricks": spaces.Box(-np.inf, np.inf, (n, len(lay.BRICK_FIELDS)), dtype=np.float64),
-            }
-        )
+        observed: dict[str, spaces.Space] = {
+            "state": spaces.Box(-np.inf, np.inf, (self.layout.size,), dtype=np.float64),
+            "bricks": spaces.Box(-np.inf, np.inf, (n, len(lay.BRICK_FIELDS)), dtype=np.float64),
+        }
+        if self.cameras:
+            height, width = image_size
+            observed["images"] = spaces.Dict(
+                {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in self.cameras}
+            )
+        self.observation_space = spaces.Dict(observed)
+        self._camera_ids = lay.camera_names(self.config.robot_description)
+        self._eyes: Any = None  # the cameras' renderer, made at the first observation
         self._state = np.zeros(self.layout.size)
         h = self._loop.handles  # addresses are the same in every episode's compiled scene
         self._lin_vel = np.array([[v, v + 1, v + 2] for v in h.brick_dofs])
@@ -87,6 +99,7 @@ class BuildEnv(gymnasium.Env):
         """A new build from the start, its spawn jitter drawn from `seed` (the settings' seed
         when None)."""
         super().reset(seed=seed)
+        self.close()  # a renderer is made for one compiled model
         self._loop = self._new_loop(self.config.seed if seed is None else seed)
         self._placed = set()
         self._expert_done = False
@@ -129,26 +142,35 @@ class BuildEnv(gymnasium.Env):
         if self.render_mode != "rgb_array":
             return None
         if self._renderer is None:
-            from ..output.gl_backend import choose_gl_backend
-            from ..output.renderer import HeadlessRenderer
-
             height, width = self.render_size
-            self._renderer = HeadlessRenderer(self._loop.model, width, height, choose_gl_backend())
+            self._renderer = _renderer(self._loop.model, width, height)
         self._renderer.update_scene(self._loop.data, "overview")
         return self._renderer.render()
 
     def close(self) -> None:
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
+        for name in ("_renderer", "_eyes"):
+            renderer = getattr(self, name, None)
+            if renderer is not None:
+                renderer.close()
+                setattr(self, name, None)
 
     # --- what a step reads -----------------------------------------------------------------
-    def _observe(self) -> dict[str, np.ndarray]:
+    def _observe(self) -> dict[str, Any]:
         loop = self._loop
-        return {
+        observed: dict[str, Any] = {
             "state": lay.state(loop.data, loop.handles, self._state).copy(),
             "bricks": loop.data.qpos[self._brick_q],
         }
+        if self.cameras:
+            if self._eyes is None:
+                height, width = self.image_size
+                self._eyes = _renderer(loop.model, width, height)
+            images = {}
+            for camera in self.cameras:
+                self._eyes.update_scene(loop.data, self._camera_ids[camera])
+                images[camera] = self._eyes.render()
+            observed["images"] = images
+        return observed
 
     def _hold(self) -> np.ndarray:
         """The command that keeps both arms and hands as they are commanded now."""
@@ -200,3 +222,15 @@ class BuildEnv(gymnasium.Env):
             if z < top - OFF_TABLE or not math.isfinite(z):
                 return f"a brick (magazine slot {slot}) left the table"
         return None
+
+
+def _renderer(model: Any, width: int, height: int) -> Any:
+    """A headless renderer of the model (shadows off: they cost 4x on the CPU)."""
+    import mujoco
+
+    from ..output.gl_backend import choose_gl_backend
+    from ..output.renderer import HeadlessRenderer
+
+    renderer = HeadlessRenderer(model, width, height, choose_gl_backend())
+    renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
+    return renderer

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from ..choices import CAMERAS
+from ..errors import ConfigError
 from ..physics import names as c
 from ..physics.handles import SceneHandles
 from ..robots import RobotDescription
@@ -67,3 +69,22 @@ def brick_index(handles: SceneHandles) -> np.ndarray:
     """The qpos addresses of every magazine brick's position and orientation (n x 7, in
     magazine order): `data.qpos[brick_index(h)]` is the `bricks` observation."""
     return np.array([np.arange(q, q + 7) for q in handles.brick_qpos])
+
+
+def camera_names(robot: RobotDescription) -> dict[str, str]:
+    """The cameras an observation can hold, by the name a dataset gives them, to the model's
+    camera names: the scene's three and a wrist camera on each hand."""
+    named: dict[str, str] = {camera: camera for camera in CAMERAS}
+    for arm, description in robot.arms.items():
+        named[f"{arm}_wrist"] = description.wrist_camera
+    return named
+
+
+def check_cameras(cameras: tuple[str, ...], robot: RobotDescription) -> None:
+    """ConfigError for a camera that is not one of `camera_names`, or one named twice."""
+    known = camera_names(robot)
+    for camera in cameras:
+        if camera not in known:
+            raise ConfigError(f"cameras: unknown {camera!r}; accepted {', '.join(known)}")
+    if len(set(cameras)) != len(cameras):
+        raise ConfigError(f"cameras: {', '.join(cameras)} names one twice; accepted each once")
