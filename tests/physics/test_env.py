@@ -120,3 +120,29 @@ def test_cameras_asked_for_are_observed_at_their_size():
     env.close()
     with pytest.raises(pyramid_sim.ConfigError, match="cameras: unknown 'nose'"):
         gymnasium.make(ENV, structure="pyramid", layers=1, cameras=("nose",))
+
+
+def test_an_expert_episode_is_kept_at_the_datasets_rate():
+    """A frame every 100 / fps control steps, each with the observation before its action,
+    the reward of the steps it spans, what each arm was doing; the last one done."""
+    import os
+
+    from pyramid_sim.learning.episode import PRIMITIVES, expert_episode
+
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    env = gymnasium.make(ENV, structure="pyramid", layers=1, image_size=(32, 32)).unwrapped
+    frames = []
+    end = expert_episode(
+        env, seed=0, fps=25, cameras=("overview", "left_wrist"), on_frame=frames.append
+    )
+    assert end.success and end.failure is None and end.frames == len(frames)
+    steps = round(end.result["sim_time_s"] / 0.01)
+    assert len(frames) == -(-steps // 4)  # one frame every 4 control steps, the first at 0
+    assert [f.done for f in frames].count(True) == 1 and frames[-1].done
+    assert sum(f.reward for f in frames) == 1.0
+    assert frames[0].state.dtype == np.float32 and frames[0].action.shape == (16,)
+    assert set(frames[0].images) == {"overview", "left_wrist"}
+    doing = {PRIMITIVES[p] for f in frames for p in f.primitive}
+    assert {"hover", "grip", "release"} <= doing
+    assert {b for f in frames for b in f.brick} == {-1, 0}
+    env.close()

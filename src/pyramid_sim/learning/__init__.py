@@ -1,9 +1,9 @@
 """For robot learning: the build as a Gymnasium environment (`env.BuildEnv`, registered as
 `pyramid_sim/Build-v0` when pyramid_sim is imported) and what it observes and commands
-(`layout`).
+(`layout`), and the expert's episodes kept at a dataset's rate (`episode`).
 
 Importing the package imports none of its modules (the environment needs MuJoCo); `__all__`
 names them.
 """
 
-__all__ = ["env", "layout"]
+__all__ = ["env", "episode", "layout"]

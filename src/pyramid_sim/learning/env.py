@@ -162,15 +162,25 @@ class BuildEnv(gymnasium.Env):
             "bricks": loop.data.qpos[self._brick_q],
         }
         if self.cameras:
-            if self._eyes is None:
-                height, width = self.image_size
-                self._eyes = _renderer(loop.model, width, height)
-            images = {}
-            for camera in self.cameras:
-                self._eyes.update_scene(loop.data, self._camera_ids[camera])
-                images[camera] = self._eyes.render()
-            observed["images"] = images
+            observed["images"] = self.images(self.cameras)
         return observed
+
+    def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
+        """What the named cameras see now (names as `layout.camera_names` gives them), at
+        `image_size`: the observation's images, or a recorder's at the frames it keeps."""
+        if self._eyes is None:
+            height, width = self.image_size
+            self._eyes = _renderer(self._loop.model, width, height)
+        images = {}
+        for camera in cameras:
+            self._eyes.update_scene(self._loop.data, self._camera_ids[camera])
+            images[camera] = self._eyes.render()
+        return images
+
+    @property
+    def loop(self) -> BuildLoop:
+        """The build this episode runs (its parts, its expert's state)."""
+        return self._loop
 
     def _hold(self) -> np.ndarray:
         """The command that keeps both arms and hands as they are commanded now."""

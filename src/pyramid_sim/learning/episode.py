@@ -1,0 +1,85 @@
+"""One expert demonstration: the scripted builder rolled out in the environment from a seed,
+its frames kept at the dataset's rate and handed to a sink as they come (a film of a long
+build never sits in memory)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .env import BuildEnv
+
+# What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
+PRIMITIVES = ("idle", "hover", "approach", "servo", "grip", "release", "retract", "clear", "standby")
+CONTROL_HZ = 100  # the build's control rate: a dataset's fps divides it
+
+
+@dataclass(frozen=True)
+class Frame:
+    """What a dataset keeps of one frame: the observation before the action, the action,
+    and the reward and end that followed it (summed over the control steps it spans)."""
+
+    state: np.ndarray  # float32, the layout's order
+    action: np.ndarray  # float32
+    images: dict[str, np.ndarray]  # camera -> H x W x 3 uint8
+    reward: float
+    done: bool
+    primitive: tuple[int, int]  # per arm, left first: an index into PRIMITIVES
+    brick: tuple[int, int]  # per arm: the brick (build order) its task handles, -1 for none
+
+
+@dataclass(frozen=True)
+class EpisodeEnd:
+    """How the episode ended: its frames, success, why it failed, and its result.json."""
+
+    frames: int
+    success: bool
+    failure: str | None
+    result: dict[str, Any]
+
+
+def _doing(env: BuildEnv) -> tuple[tuple[int, int], tuple[int, int]]:
+    loop = env.loop
+    primitives, bricks = [], []
+    for arm in ("left", "right"):
+        step = loop.step_of(arm)
+        primitives.append(PRIMITIVES.index(step.name) if step is not None else 0)
+        task = loop.dispatch.task_of[arm]
+        bricks.append(task.brick if task is not None and task.brick is not None else -1)
+    return (primitives[0], primitives[1]), (bricks[0], bricks[1])
+
+
+def expert_episode(
+    env: BuildEnv, seed: int, fps: int, cameras: tuple[str, ...], on_frame: Callable[[Frame], Any]
+) -> EpisodeEnd:
+    """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame every
+    CONTROL_HZ / fps control steps; the last frame is marked done."""
+    every = CONTROL_HZ // fps
+    obs, _ = env.reset(seed=seed)
+    step = frames = 0
+    pending: Frame | None = None
+    reward = 0.0
+    while True:
+        action = env.expert_action()
+        if step % every == 0:
+            if pending is not None:
+                on_frame(pending)
+                frames += 1
+            primitive, brick = _doing(env)
+            pending = Frame(
+                obs["state"].astype(np.float32), action.astype(np.float32),
+                env.images(cameras) if cameras else {}, 0.0, False, primitive, brick,
+            )
+            reward = 0.0
+        obs, r, terminated, truncated, info = env.step(action)
+        reward += r
+        assert pending is not None
+        pending = Frame(pending.state, pending.action, pending.images, reward,
+                        terminated or truncated, pending.primitive, pending.brick)
+        step += 1
+        if terminated or truncated:
+            on_frame(pending)
+            return EpisodeEnd(frames + 1, info["is_success"], info["failure"], info["result"])
