@@ -146,3 +146,13 @@ def test_an_expert_episode_is_kept_at_the_datasets_rate():
     assert {"hover", "grip", "release"} <= doing
     assert {b for f in frames for b in f.brick} == {-1, 0}
     env.close()
+
+
+def test_the_time_limit_truncates_an_episode():
+    env = gymnasium.make(
+        ENV, structure="pyramid", layers=1, config=pyramid_sim.SimConfig(max_sim_time=1.0)
+    )
+    _, _, rewards, terminated, truncated, info = _rollout(env, seed=0)
+    assert truncated and not terminated and not info["is_success"]
+    assert 1.0 < info["sim_time_s"] < 1.02 and "within 1 s" in info["failure"]
+    env.close()

@@ -54,7 +54,8 @@ class BuildEnv(gymnasium.Env):
         **options: Any,
     ) -> None:
         own = ("arms", "render_mode", "render_size", "cameras", "image_size")
-        self.config, spec = resolve(structure, None, dict(options), own=own)
+        options = dict(options)
+        self.config, spec = resolve(structure, options.pop("config", None), options, own=own)
         self.cameras = tuple(cameras)
         lay.check_cameras(self.cameras, self.config.robot_description)
         self.image_size = image_size
@@ -90,7 +91,9 @@ class BuildEnv(gymnasium.Env):
         self._expert_done = False
 
     def _new_loop(self, seed: int) -> BuildLoop:
-        return BuildLoop.of(self.plan, replace(self.config, seed=seed))
+        # No stall: a policy may take its time; the time limit truncates the episode.
+        config = replace(self.config, seed=seed, stall_time=self.config.max_sim_time)
+        return BuildLoop.of(self.plan, config)
 
     # --- the Gymnasium API ---------------------------------------------------------------
     def reset(
@@ -114,10 +117,10 @@ class BuildEnv(gymnasium.Env):
         newly = self._newly_placed()
         failure = failure or self._broken()
         success = len(self._placed) == len(self.plan.bricks)
-        truncated = (
-            failure is None and not success and self._loop.data.time >= self.config.max_sim_time
-        )
-        terminated = success or (failure is not None and not truncated)
+        # The build's time limit ends an episode as truncated, whatever stopped the loop there.
+        truncated = not success and self._loop.data.time > self.config.max_sim_time
+        terminated = not truncated and (success or failure is not None)
+
         info: dict[str, Any] = {
             "sim_time_s": float(self._loop.data.time),
             "bricks_placed": len(self._placed),

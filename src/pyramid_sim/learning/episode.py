@@ -13,7 +13,17 @@ import numpy as np
 from .env import BuildEnv
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
-PRIMITIVES = ("idle", "hover", "approach", "servo", "grip", "release", "retract", "clear", "standby")
+PRIMITIVES = (
+    "idle",
+    "hover",
+    "approach",
+    "servo",
+    "grip",
+    "release",
+    "retract",
+    "clear",
+    "standby",
+)
 CONTROL_HZ = 100  # the build's control rate: a dataset's fps divides it
 
 
@@ -70,15 +80,27 @@ def expert_episode(
                 frames += 1
             primitive, brick = _doing(env)
             pending = Frame(
-                obs["state"].astype(np.float32), action.astype(np.float32),
-                env.images(cameras) if cameras else {}, 0.0, False, primitive, brick,
+                obs["state"].astype(np.float32),
+                action.astype(np.float32),
+                env.images(cameras) if cameras else {},
+                0.0,
+                False,
+                primitive,
+                brick,
             )
             reward = 0.0
         obs, r, terminated, truncated, info = env.step(action)
         reward += r
         assert pending is not None
-        pending = Frame(pending.state, pending.action, pending.images, reward,
-                        terminated or truncated, pending.primitive, pending.brick)
+        pending = Frame(
+            pending.state,
+            pending.action,
+            pending.images,
+            reward,
+            terminated or truncated,
+            pending.primitive,
+            pending.brick,
+        )
         step += 1
         if terminated or truncated:
             on_frame(pending)
