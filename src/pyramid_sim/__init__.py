@@ -6,7 +6,7 @@ DE NIRO's own generators with its own numbers, public so a user can set a struct
 seed's; `pyramid` and `pyramid_even` are the resting targets built from them.
 """
 
-from .api import build, plan, settings, structure
+from .api import build, plan, record, settings, structure
 from .config import (
     BrickConfig,
     GripperConfig,
@@ -82,6 +82,7 @@ __all__ = [
     "create_coordinates_new",
     "make_plan",
     "plan",
+    "record",
     "pyramid",
     "pyramid_even",
     "settings",

@@ -157,3 +157,41 @@ def _prepare_gl(render: bool) -> None:
             raise
     if render:
         import_physics_for_rendering()
+
+
+def record(
+    out: str | Path,
+    name: str = "pyramid-even",
+    *,
+    arms: ArmChoice = "both",
+    episodes: int = 1,
+    seed: int = 0,
+    fps: int = 25,
+    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist"),
+    image_size: tuple[int, int] = (224, 224),
+    on_frame: Any = None,
+    config: SimConfig | None = None,
+    **options: Any,
+) -> Any:
+    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
+    `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
+    `image_size` (height, width). Episodes already in `out` are kept and not run again.
+    `options` as for `build`. Returns the `Recorded` summary."""
+    own = ("episodes", "seed", "fps", "cameras", "image_size", "on_frame", "arms")
+    config, spec = resolve(name, config, dict(options), own=own)
+    from .learning.record import RecordConfig
+
+    sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
+    settings_ = RecordConfig(
+        name,
+        {**sizes, "arms": arms, "config": config},
+        episodes,
+        seed,
+        fps,
+        tuple(cameras),
+        tuple(image_size),  # type: ignore[arg-type]
+    )
+    _prepare_gl(render=bool(cameras))
+    from .learning.record import record as run
+
+    return run(Path(out), settings_, on_frame)

@@ -18,6 +18,7 @@ from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a
 from . import commands
+from .record_command import add_record_args, cmd_record
 from .sweep_args import add_sweep_args
 from .video_args import add_video_args
 
@@ -30,6 +31,7 @@ COMMANDS = {
     "sweep": commands.cmd_sweep,
     "reach": commands.cmd_reach,
     "scene": commands.cmd_scene,
+    "record": cmd_record,
 }
 
 
@@ -65,6 +67,9 @@ def make_parser() -> a.Parser:
         required=True,
         metavar="FILE",
         help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",
+    )
+    add_record_args(
+        sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
     )
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     a.add_robot_arg(reach)

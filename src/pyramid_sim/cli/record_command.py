@@ -1,0 +1,122 @@
+"""`pyramid-sim record`: the expert's builds as a LeRobot dataset, its flags and its run."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..errors import ConfigError
+from ..output.files import check_writable_dir, removed_if_failed
+from ..output.lock import holding
+from .args import add_out_args, add_physics_args, add_schedule_arg, add_structure_args, whole
+from .progress import Progress
+
+CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
+
+
+def image_size(text: str) -> tuple[int, int]:
+    """`H` (square) or `HxW`, in pixels."""
+    try:
+        parts = [int(v) for v in text.lower().split("x")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"image size: {text!r} is not a size; accepted N or HxW, even, 16 to 1080 x 1920"
+        ) from None
+    if len(parts) == 1:
+        return parts[0], parts[0]
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"image size: {text!r}; accepted N or HxW")
+    return parts[0], parts[1]
+
+
+def add_record_args(p: argparse.ArgumentParser) -> None:
+    add_structure_args(p)
+    add_physics_args(p)
+    add_schedule_arg(p)
+    p.add_argument(
+        "--episodes",
+        type=whole("episodes", "1 to 100000"),
+        default=1,
+        help="whole builds, seeds --seed, --seed + 1, ... (default 1)",
+    )
+    p.add_argument(
+        "--fps",
+        type=whole("fps", "10, 20, 25, 50 or 100"),
+        default=25,
+        help="frames a second kept of the 100 Hz control: 10, 20, 25, 50 or 100 (default 25)",
+    )
+    p.add_argument(
+        "--cameras",
+        default=CAMERAS_DEFAULT,
+        metavar="A,B,...",
+        help="overview, front, top, left_wrist, right_wrist; none for no video "
+        f"(default {CAMERAS_DEFAULT})",
+    )
+    p.add_argument(
+        "--image-size",
+        type=image_size,
+        default=(224, 224),
+        metavar="H[xW]",
+        help="each camera's pixels, even (default 224)",
+    )
+    add_out_args(p, Path("runs/dataset"))
+
+
+def cmd_record(args: argparse.Namespace) -> int:
+    """Record what the dataset lacks; exit 1 if an episode's build failed (it is kept)."""
+    import pyramid_sim
+
+    from .args import config_from_args, spec_from_args
+
+    config = config_from_args(args)
+    spec = spec_from_args(args, config)
+    cameras = (
+        ()
+        if args.cameras.strip() == "none"
+        else tuple(c.strip() for c in args.cameras.split(",") if c.strip())
+    )
+    check_writable_dir(args.out)
+    if spec.goals is not None:
+        raise ConfigError("structure: list is not recorded yet; accepted the generated structures")
+    sizes = {k: v for k, v in spec.size.items()}
+    with (
+        removed_if_failed([args.out]),
+        holding([(args.out, "out")]),
+        Progress(
+            "episodes", args.episodes, "episode", quiet=args.quiet, count_unit="frame"
+        ) as progress,
+    ):
+        progress.start()
+        done = {"episode": -1}
+
+        def on_frame(episode: int, frames: int) -> None:
+            if episode != done["episode"]:
+                if done["episode"] >= 0:
+                    progress.advance()
+                done["episode"] = episode
+            progress.count()
+
+        recorded = pyramid_sim.record(
+            args.out,
+            spec.name,
+            arms=args.arms,
+            episodes=args.episodes,
+            seed=config.seed,
+            fps=args.fps,
+            cameras=cameras,
+            image_size=args.image_size,
+            on_frame=on_frame,
+            config=config,
+            **sizes,
+        )
+        progress.advance_to(args.episodes)
+    failed = (
+        f", {len(recorded.failed)} failed (kept: {list(recorded.failed)})"
+        if recorded.failed
+        else ""
+    )
+    print(
+        f"recorded: {recorded.episodes} episodes ({recorded.added} now), {recorded.frames} "
+        f"frames{failed} -> {args.out}"
+    )
+    return 1 if recorded.failed else 0

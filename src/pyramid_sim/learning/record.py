@@ -1,0 +1,248 @@
+"""`pyramid-sim record`: the scripted expert's builds as a LeRobot dataset (v3.0).
+
+An episode is one whole build from its seed (`first_seed + episode`), kept at `fps` with the
+cameras asked for. Re-running adds only the episodes missing; an episode is in the dataset
+once its files and its record (`meta/pyramid_sim/episode_NNNNNN.json`: its seed, success and
+result.json) are in place, which happens together, Ctrl-C and SIGTERM held for that moment.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import ConfigError
+from ..output.files import write_atomic
+from ..output.video import signals_held
+from ..version import __version__
+from . import lerobot_format as fmt
+from .env import BuildEnv
+from .episode import CONTROL_HZ, PRIMITIVES, Frame, expert_episode
+from .layout import camera_names, check_cameras
+from .lerobot_meta import write_meta
+
+RECORDS = "meta/pyramid_sim"
+TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
+
+
+@dataclass(frozen=True)
+class RecordConfig:
+    """What a recording is: the build (structure, size and settings, as `build` takes them),
+    how many episodes from which seed, and how they are filmed."""
+
+    structure: str = "pyramid-even"
+    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
+    episodes: int = 1
+    first_seed: int = 0
+    fps: int = 25
+    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
+    image_size: tuple[int, int] = (224, 224)
+
+    def __post_init__(self) -> None:
+        if not 1 <= self.episodes <= 100_000:
+            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
+        if self.fps not in (10, 20, 25, 50, 100):
+            raise ConfigError(
+                f"fps: {self.fps}; accepted 10, 20, 25, 50 or 100 (a divisor of the build's "
+                f"{CONTROL_HZ} Hz control)"
+            )
+        height, width = self.image_size
+        if not (16 <= height <= 1080 and 16 <= width <= 1920 and height % 2 == width % 2 == 0):
+            raise ConfigError(
+                f"image size: {height}x{width}; accepted even sizes, 16 to 1080 high and 16 to "
+                "1920 wide"
+            )
+        if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
+            raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
+
+
+@dataclass(frozen=True)
+class Recorded:
+    """What a recording left: the dataset's folder, its episodes and frames, and how many
+    episodes this run added."""
+
+    root: Path
+    episodes: int
+    frames: int
+    added: int
+    failed: tuple[int, ...]  # episodes whose build did not succeed (they are kept)
+
+
+def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
+    """The dataset's per-frame features, from the environment's layout."""
+    names = env.layout.names
+    height, width = config.image_size
+    found = {
+        "observation.state": fmt.Feature("float32", (len(names),), names),
+        "action": fmt.Feature("float32", (len(names),), names),
+    }
+    for camera in config.cameras:
+        found[f"observation.images.{camera}"] = fmt.Feature("video", (height, width, 3))
+    found["next.reward"] = fmt.Feature("float32", (1,))
+    found["next.done"] = fmt.Feature("bool", (1,))
+    for arm in ("left", "right"):
+        found[f"primitive.{arm}"] = fmt.Feature("int64", (1,))  # an index into PRIMITIVES
+        found[f"brick.{arm}"] = fmt.Feature("int64", (1,))  # build order, -1 for none
+    return found
+
+
+def _frame_values(frame: Frame, cameras: tuple[str, ...]) -> dict[str, Any]:
+    values: dict[str, Any] = {
+        "observation.state": frame.state,
+        "action": frame.action,
+        "next.reward": frame.reward,
+        "next.done": frame.done,
+        "primitive.left": frame.primitive[0],
+        "primitive.right": frame.primitive[1],
+        "brick.left": frame.brick[0],
+        "brick.right": frame.brick[1],
+    }
+    for camera in cameras:
+        values[f"observation.images.{camera}"] = frame.images[camera]
+    return values
+
+
+def _records(root: Path) -> dict[int, dict[str, Any]]:
+    found = {}
+    for path in sorted((root / RECORDS).glob("episode_*.json")):
+        record = json.loads(path.read_text())
+        found[int(record["episode_index"])] = record
+    return found
+
+
+def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
+    """Files of an episode that never made it into the dataset (a run killed outright, or
+    halfway through writing), and every temporary file, go."""
+    for path in [*root.glob("data/*/*"), *root.glob("videos/*/*/*")]:
+        if path.name.endswith(".part"):
+            path.unlink()
+            continue
+        chunk, file = int(path.parent.name.split("-")[1]), int(path.stem.split("-")[1])
+        if chunk * fmt.CHUNK_SIZE + file not in recorded:
+            path.unlink()
+
+
+def record(
+    out: Path, config: RecordConfig, on_frame: Callable[[int, int], Any] | None = None
+) -> Recorded:
+    """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame."""
+    env = BuildEnv(config.structure, image_size=config.image_size, **config.options)
+    check_cameras(config.cameras, env.config.robot_description)
+    feats = features(env, config)
+    robot = env.config.robot_description.name
+    spec = env.plan.spec
+    task = TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
+    extra = {
+        "pyramid_sim": {
+            "version": __version__,
+            "structure": spec.name,
+            "size": dict(spec.size),
+            "primitives": list(PRIMITIVES),
+            "first_seed": config.first_seed,
+            "cameras": {
+                c: n
+                for c, n in camera_names(env.config.robot_description).items()
+                if c in config.cameras
+            },
+        }
+    }
+    records = _records(out)
+    for index, rec in records.items():
+        if rec["task"] != task or rec["fps"] != config.fps or rec["features"] != list(feats):
+            raise ConfigError(
+                f"out: {str(out)!r} holds episodes of another recording (episode {index}: "
+                f"{rec['task']!r} at {rec['fps']} fps); accepted a new folder or the same "
+                "recording's"
+            )
+    _clear_unrecorded(out, set(records))
+    added, failed = 0, [i for i, r in records.items() if not r["success"]]
+    try:
+        for episode in range(config.episodes):
+            if episode in records:
+                continue
+            first = sum(r["row"]["length"] for i, r in records.items() if i < episode)
+            files = fmt.EpisodeFiles(out, episode, first, config.fps, feats)
+            end, row = _film_episode(env, files, config, on_frame)
+            rec = {
+                "episode_index": episode,
+                "seed": config.first_seed + episode,
+                "task": task,
+                "fps": config.fps,
+                "features": list(feats),
+                "success": end.success,
+                "failure": end.failure,
+                "result": end.result,
+                "config": asdict(config),
+                "row": _jsonable(row),
+            }
+            with signals_held():  # the files and the record land together
+                files.commit()
+                _write_text(
+                    out / RECORDS / f"episode_{episode:06d}.json", json.dumps(rec, indent=1) + "\n"
+                )
+                records[episode] = rec
+                write_meta(
+                    out,
+                    [r["row"] for r in records.values()],
+                    config.fps,
+                    f"{robot}_pair" if robot == "panda" else robot,
+                    feats,
+                    task,
+                    extra,
+                )
+            added += 1
+            if not end.success:
+                failed.append(episode)
+    finally:
+        env.close()
+    frames = sum(r["row"]["length"] for r in records.values())
+    return Recorded(out, len(records), frames, added, tuple(sorted(failed)))
+
+
+def _film_episode(
+    env: BuildEnv,
+    files: fmt.EpisodeFiles,
+    config: RecordConfig,
+    on_frame: Callable[[int, int], Any] | None,
+) -> tuple[Any, dict[str, Any]]:
+    """Roll the expert out into `files`; how it ended and its metadata row. A run stopped
+    midway leaves none of the episode's files."""
+    frames = 0
+
+    def keep(frame: Frame) -> None:
+        nonlocal frames
+        files.add(_frame_values(frame, config.cameras))
+        frames += 1
+        if on_frame is not None:
+            on_frame(files.episode, frames)
+
+    try:
+        end = expert_episode(
+            env, config.first_seed + files.episode, config.fps, config.cameras, keep
+        )
+        return end, files.close()
+    except BaseException:
+        files.abort()
+        raise
+
+
+def _write_text(path: Path, text: str) -> None:
+    write_atomic(path, lambda tmp: tmp.write_text(text))
+
+
+def _jsonable(row: dict[str, Any]) -> dict[str, Any]:
+    import numpy as np
+
+    def convert(value: Any) -> Any:
+        if isinstance(value, dict):
+            return {k: convert(v) for k, v in value.items()}
+        if isinstance(value, np.ndarray):
+            return value.tolist()
+        if isinstance(value, np.generic):
+            return value.item()
+        return value
+
+    return convert(row)

@@ -1,0 +1,160 @@
+"""`record` writes a LeRobot dataset (v3.0) that pyarrow and PyAV read back whole: frame
+counts, shapes, episode boundaries, timestamps at 1/fps, statistics and decodable videos; a
+second run adds only the missing episodes, and a stopped run leaves the finished ones."""
+
+import json
+import os
+
+import av
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+import pyramid_sim
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+SIZE = (48, 64)
+CAMERAS = ("overview", "left_wrist")
+
+
+def _record(root, episodes, **extra):
+    return pyramid_sim.record(
+        root,
+        "pyramid",
+        layers=1,
+        episodes=episodes,
+        fps=25,
+        cameras=CAMERAS,
+        image_size=SIZE,
+        **extra,
+    )
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory):
+    root = tmp_path_factory.mktemp("dataset") / "d"
+    recorded = _record(root, 2)
+    return root, recorded
+
+
+def test_the_dataset_is_lerobots_v3_layout(dataset):
+    root, recorded = dataset
+    assert recorded.episodes == 2 and recorded.added == 2 and recorded.failed == ()
+    info = json.loads((root / "meta/info.json").read_text())
+    assert info["codebase_version"] == "v3.0" and info["fps"] == 25
+    assert info["total_episodes"] == 2 and info["total_frames"] == recorded.frames
+    for camera in CAMERAS:
+        feature = info["features"][f"observation.images.{camera}"]
+        assert feature["dtype"] == "video" and feature["shape"] == [*SIZE, 3]
+    assert info["features"]["observation.state"]["shape"] == [16]
+    tasks = pq.read_table(root / "meta/tasks.parquet").to_pylist()
+    assert tasks == [{"task_index": 0, "task": tasks[0]["task"]}] and "pyramid" in tasks[0]["task"]
+
+
+def test_frames_episodes_and_timestamps_agree(dataset):
+    root, recorded = dataset
+    episodes = pq.read_table(root / "meta/episodes/chunk-000/file-000.parquet").to_pylist()
+    data = [
+        pq.read_table(root / f"data/chunk-000/file-{e:03d}.parquet").to_pydict() for e in range(2)
+    ]
+    assert sum(len(d["index"]) for d in data) == recorded.frames
+    start = 0
+    for e, (row, frames) in enumerate(zip(episodes, data)):
+        n = row["length"]
+        assert row["episode_index"] == e and len(frames["index"]) == n
+        assert (row["dataset_from_index"], row["dataset_to_index"]) == (start, start + n)
+        assert frames["index"] == list(range(start, start + n))
+        assert frames["frame_index"] == list(range(n)) and set(frames["episode_index"]) == {e}
+        np.testing.assert_allclose(frames["timestamp"], np.arange(n) / 25, atol=1e-6)
+        assert frames["next.done"] == [False] * (n - 1) + [True]
+        assert sum(frames["next.reward"]) == 1.0  # the one brick, placed once
+        assert np.array(frames["observation.state"]).shape == (n, 16)
+        assert np.array(frames["action"]).shape == (n, 16)
+        for camera in CAMERAS:
+            assert row[f"videos/observation.images.{camera}/to_timestamp"] == pytest.approx(n / 25)
+        start += n
+
+
+def test_every_video_frame_decodes_at_its_size(dataset):
+    root, _ = dataset
+    lengths = [
+        r["length"]
+        for r in pq.read_table(root / "meta/episodes/chunk-000/file-000.parquet").to_pylist()
+    ]
+    for camera in CAMERAS:
+        for e, n in enumerate(lengths):
+            path = root / f"videos/observation.images.{camera}/chunk-000/file-{e:03d}.mp4"
+            with av.open(str(path)) as container:
+                frames = [f.to_ndarray(format="rgb24") for f in container.decode(video=0)]
+            assert len(frames) == n and frames[0].shape == (*SIZE, 3)
+            assert np.std(frames[n // 2]) > 5  # a picture, not a blank
+
+
+def test_the_statistics_cover_every_frame(dataset):
+    root, recorded = dataset
+    stats = json.loads((root / "meta/stats.json").read_text())
+    for key in ("observation.state", "action", "next.reward", "timestamp", "index"):
+        assert stats[key]["count"] == [recorded.frames]
+        assert all(k in stats[key] for k in ("min", "max", "mean", "std", "q01", "q99"))
+    state = np.concatenate(
+        [
+            np.array(
+                pq.read_table(root / f"data/chunk-000/file-{e:03d}.parquet")
+                .column("observation.state")
+                .to_pylist()
+            )
+            for e in range(2)
+        ]
+    )
+    np.testing.assert_allclose(stats["observation.state"]["mean"], state.mean(axis=0), atol=1e-5)
+    np.testing.assert_allclose(stats["observation.state"]["max"], state.max(axis=0), atol=1e-6)
+    image = np.array(stats["observation.images.overview"]["mean"])
+    assert image.shape == (3, 1, 1) and 0 < image.min() and image.max() < 1
+
+
+def test_a_second_run_adds_only_the_missing_episodes(dataset, tmp_path):
+    root, _ = dataset
+    import shutil
+
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    before = (copy / "data/chunk-000/file-000.parquet").read_bytes()
+    again = _record(copy, 3)
+    assert again.added == 1 and again.episodes == 3
+    assert (copy / "data/chunk-000/file-000.parquet").read_bytes() == before
+    info = json.loads((copy / "meta/info.json").read_text())
+    assert info["total_episodes"] == 3 and info["splits"] == {"train": "0:3"}
+
+
+def test_a_stopped_run_leaves_the_episodes_it_finished(dataset, tmp_path):
+    root, recorded = dataset
+    import shutil
+
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+
+    def stop(episode, frames):
+        if episode == 2 and frames == 10:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        _record(copy, 3, on_frame=stop)
+    assert not [p for p in copy.rglob("*") if p.name.endswith(".part")]
+    assert sorted(p.name for p in (copy / "data/chunk-000").iterdir()) == [
+        "file-000.parquet",
+        "file-001.parquet",
+    ]
+    info = json.loads((copy / "meta/info.json").read_text())
+    assert info["total_episodes"] == 2 and info["total_frames"] == recorded.frames
+
+
+def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
+    root, _ = dataset
+    import shutil
+
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    with pytest.raises(pyramid_sim.ConfigError, match="holds episodes of another recording"):
+        pyramid_sim.record(
+            copy, "pyramid", layers=1, episodes=3, fps=50, cameras=CAMERAS, image_size=SIZE
+        )
