@@ -158,3 +158,18 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
         pyramid_sim.record(
             copy, "pyramid", layers=1, episodes=3, fps=50, cameras=CAMERAS, image_size=SIZE
         )
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50 or 100"),
+        (["--cameras", "nose"], "cameras: unknown 'nose'; accepted overview, front"),
+        (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
+        (["--image-size", "15"], "image size: 15x15; accepted even sizes"),
+    ],
+)
+def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
+    out = tmp_path / "never"
+    line = refused(["record", "--structure", "pyramid", "--layers", "1", "--out", str(out), *argv])
+    assert words in line and not out.exists()
