@@ -169,15 +169,17 @@ def record(
     fps: int = 25,
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist"),
     image_size: tuple[int, int] = (224, 224),
+    randomize: tuple[str, ...] = (),
     on_frame: Any = None,
     config: SimConfig | None = None,
     **options: Any,
 ) -> Any:
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
-    `image_size` (height, width). Episodes already in `out` are kept and not run again.
+    `image_size` (height, width), each episode's `randomize` parts drawn from its seed.
+    Episodes already in `out` are kept and not run again.
     `options` as for `build`. Returns the `Recorded` summary."""
-    own = ("episodes", "seed", "fps", "cameras", "image_size", "on_frame", "arms")
+    own = ("episodes", "seed", "fps", "cameras", "image_size", "randomize", "on_frame", "arms")
     config, spec = resolve(name, config, dict(options), own=own)
     from .learning.record import RecordConfig
 
@@ -190,6 +192,7 @@ def record(
         fps,
         tuple(cameras),
         tuple(image_size),  # type: ignore[arg-type]
+        tuple(randomize),
     )
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run

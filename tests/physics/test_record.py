@@ -173,3 +173,25 @@ def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, re
     out = tmp_path / "never"
     line = refused(["record", "--structure", "pyramid", "--layers", "1", "--out", str(out), *argv])
     assert words in line and not out.exists()
+
+
+def test_each_episode_keeps_its_randomization(tmp_path):
+    recorded = pyramid_sim.record(
+        tmp_path / "r",
+        "pyramid",
+        layers=1,
+        episodes=2,
+        fps=10,
+        cameras=(),
+        randomize=("friction", "colours"),
+    )
+    records = [
+        json.loads((tmp_path / f"r/meta/pyramid_sim/episode_00000{e}.json").read_text())
+        for e in range(2)
+    ]
+    assert recorded.episodes == 2
+    draws = [r["randomization"] for r in records]
+    assert all(set(d) == {"friction", "colours"} for d in draws) and draws[0] != draws[1]
+    assert records[0]["result"]["inputs"]["settings"]["brick"]["friction"] == pytest.approx(
+        draws[0]["friction"]
+    )

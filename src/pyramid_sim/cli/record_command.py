@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
 
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
@@ -59,6 +60,14 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         metavar="H[xW]",
         help="each camera's pixels, even (default 224)",
     )
+    p.add_argument(
+        "--randomize",
+        default="",
+        metavar="A,B,...",
+        help="parts drawn per episode from its seed: all, or friction, brick_mass, "
+        "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
+        "camera (default none)",
+    )
     add_out_args(p, Path("runs/dataset"))
 
 
@@ -78,7 +87,7 @@ def cmd_record(args: argparse.Namespace) -> int:
     check_writable_dir(args.out)
     if spec.goals is not None:
         raise ConfigError("structure: list is not recorded yet; accepted the generated structures")
-    sizes = {k: v for k, v in spec.size.items()}
+    sizes: dict[str, Any] = dict(spec.size)
     with (
         removed_if_failed([args.out]),
         holding([(args.out, "out")]),
@@ -106,6 +115,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             cameras=cameras,
             image_size=args.image_size,
             on_frame=on_frame,
+            randomize=tuple(r.strip() for r in args.randomize.split(",") if r.strip()),
             config=config,
             **sizes,
         )

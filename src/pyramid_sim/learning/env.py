@@ -30,6 +30,7 @@ from ..output.result import Tolerances
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 from . import layout as lay
+from . import randomize as rnd
 
 REST_SPEED = 1e-3  # m/s: a brick slower than this is at rest
 OFF_TABLE = 0.05  # m below the table top: a brick down there has left it
@@ -51,15 +52,19 @@ class BuildEnv(gymnasium.Env):
         render_size: tuple[int, int] = (480, 640),
         cameras: tuple[str, ...] = (),
         image_size: tuple[int, int] = (224, 224),
+        randomize: tuple[str, ...] = (),
         **options: Any,
     ) -> None:
-        own = ("arms", "render_mode", "render_size", "cameras", "image_size")
+        own = ("arms", "render_mode", "render_size", "cameras", "image_size", "randomize")
         options = dict(options)
         self.config, spec = resolve(structure, options.pop("config", None), options, own=own)
         self.cameras = tuple(cameras)
         lay.check_cameras(self.cameras, self.config.robot_description)
         self.image_size = image_size
+        self.randomize = rnd.check_parts(tuple(randomize))
+        self.structure_spec, self.arms = spec, arms
         self.plan = prepare(spec, self.config, arms)
+        self.drawn: dict[str, Any] = {}  # this episode's randomization
         self.render_mode = render_mode
         self.render_size = render_size
         self.tolerances = Tolerances()
@@ -91,9 +96,17 @@ class BuildEnv(gymnasium.Env):
         self._expert_done = False
 
     def _new_loop(self, seed: int) -> BuildLoop:
-        # No stall: a policy may take its time; the time limit truncates the episode.
-        config = replace(self.config, seed=seed, stall_time=self.config.max_sim_time)
-        return BuildLoop.of(self.plan, config)
+        """The episode's build: the settings with its draw's physical parts (and a plan for
+        them: bricks of another size have other targets), its compiled model with the visual
+        parts. No stall: a policy may take its time; the time limit truncates the episode."""
+        self.drawn = rnd.draw(seed, self.randomize)
+        config = rnd.physical(self.config, self.drawn)
+        if config != self.config:
+            self.plan = prepare(self.structure_spec, config, self.arms)
+        config = replace(config, seed=seed, stall_time=config.max_sim_time)
+        loop = BuildLoop.of(self.plan, config)
+        rnd.visual(loop.model, loop.data, self.drawn)
+        return loop
 
     # --- the Gymnasium API ---------------------------------------------------------------
     def reset(
@@ -107,7 +120,8 @@ class BuildEnv(gymnasium.Env):
         self._placed = set()
         self._expert_done = False
         self._steps = 0
-        return self._observe(), {"sim_time_s": 0.0, "bricks_placed": 0}
+        info = {"sim_time_s": 0.0, "bricks_placed": 0, "randomization": self.drawn}
+        return self._observe(), info
 
     def step(
         self, action: np.ndarray

@@ -40,6 +40,7 @@ class RecordConfig:
     fps: int = 25
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
     image_size: tuple[int, int] = (224, 224)
+    randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
 
     def __post_init__(self) -> None:
         if not 1 <= self.episodes <= 100_000:
@@ -129,7 +130,9 @@ def record(
     out: Path, config: RecordConfig, on_frame: Callable[[int, int], Any] | None = None
 ) -> Recorded:
     """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame."""
-    env = BuildEnv(config.structure, image_size=config.image_size, **config.options)
+    env = BuildEnv(
+        config.structure, image_size=config.image_size, randomize=config.randomize, **config.options
+    )
     check_cameras(config.cameras, env.config.robot_description)
     feats = features(env, config)
     robot = env.config.robot_description.name
@@ -174,6 +177,7 @@ def record(
                 "features": list(feats),
                 "success": end.success,
                 "failure": end.failure,
+                "randomization": env.drawn,
                 "result": end.result,
                 "config": asdict(config),
                 "row": _jsonable(row),

@@ -1,0 +1,94 @@
+"""Per-episode randomization: each part, switched on by name, drawn from the episode's seed,
+reaches the compiled model (the physical ones) or the picture (the visual ones), and a part
+left off changes nothing."""
+
+import os
+
+import gymnasium
+import numpy as np
+import pytest
+
+import pyramid_sim
+from pyramid_sim.learning import randomize as rnd
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+ENV = pyramid_sim.ENV_ID
+
+
+def _env(parts, **extra):
+    return gymnasium.make(ENV, structure="pyramid", layers=1, randomize=parts, **extra).unwrapped
+
+
+def test_the_draw_is_the_seeds_and_each_part_its_own():
+    assert rnd.draw(3, rnd.PARTS) == rnd.draw(3, rnd.PARTS)
+    assert rnd.draw(3, rnd.PARTS) != rnd.draw(4, rnd.PARTS)
+    alone = rnd.draw(3, ("friction",))
+    assert alone == {"friction": rnd.draw(3, rnd.PARTS)["friction"]}  # not moved by the others
+    with pytest.raises(pyramid_sim.ConfigError, match="randomize: unknown 'gravity'"):
+        rnd.check_parts(("gravity",))
+
+
+def test_each_physical_part_reaches_the_compiled_model():
+    env = _env(rnd.PHYSICAL)
+    _, info = env.reset(seed=5)
+    drawn = info["randomization"]
+    m, robot = env.loop.model, env.loop.config.robot_description
+    brick = m.geom("brick00/geom")
+    assert brick.friction[0] == pytest.approx(drawn["friction"])
+    assert m.geom("table_top").friction[0] == pytest.approx(drawn["friction"])
+    assert m.body("brick00/brick").mass[0] == pytest.approx(drawn["brick_mass"])
+    base = np.array([0.192, 0.086, 0.062])
+    np.testing.assert_allclose(brick.size * 2, base + np.array(drawn["brick_size"]), atol=1e-12)
+    pad = m.geom(robot.arms["left"].pads[0])
+    assert pad.friction[0] == pytest.approx(drawn["pad_friction"])
+    grip = m.actuator(robot.arms["left"].gripper_actuator)
+    assert abs(grip.forcerange[0]) == pytest.approx(drawn["grip_force"]) or abs(
+        grip.forcerange[1]
+    ) == pytest.approx(drawn["grip_force"])
+    jitter = m.geom("spawn_volume").size[0] - brick.size[0]
+    assert jitter == pytest.approx(drawn["spawn_jitter"] / 1000.0)
+    assert env.loop.config.layout.spawn_jitter_mm == pytest.approx(drawn["spawn_jitter"])
+    env.close()
+
+
+def test_each_visual_part_changes_the_picture_and_nothing_the_physics_reads():
+    plain, shown = _env((), cameras=("overview",), image_size=(48, 64)), None
+    obs_plain, _ = plain.reset(seed=5)
+    for part in rnd.VISUAL:
+        env = _env((part,), cameras=("overview",), image_size=(48, 64))
+        obs, info = env.reset(seed=5)
+        m, p = env.loop.model, plain.loop.model
+        assert not np.array_equal(obs["images"]["overview"], obs_plain["images"]["overview"]), part
+        for field in ("geom_friction", "body_mass", "geom_size", "actuator_forcerange", "opt"):
+            if field != "opt":
+                assert np.array_equal(getattr(m, field), getattr(p, field)), (part, field)
+        changed = {
+            "light": ("light_pos", "light_diffuse"),
+            "colours": ("mat_rgba",),
+            "camera": ("cam_pos", "cam_quat"),
+        }[part]
+        for field in changed:
+            assert not np.array_equal(getattr(m, field), getattr(p, field)), (part, field)
+        shown = info["randomization"]
+        assert set(shown) == {part}
+        before = obs["images"]["overview"]
+        for _ in range(3):  # the physics steps on; what was drawn stays drawn
+            obs, *_ = env.step(env.expert_action())
+        if part == "camera":
+            cam = m.camera("overview").id
+            np.testing.assert_allclose(env.loop.data.cam_xpos[cam], m.cam_pos[cam])
+        assert before.shape == obs["images"]["overview"].shape
+        env.close()
+    plain.close()
+
+
+def test_the_expert_still_builds_under_every_part():
+    env = _env(("all",))
+    obs, info = env.reset(seed=2)
+    assert set(info["randomization"]) == set(rnd.PARTS)
+    while True:
+        obs, _, terminated, truncated, info = env.step(env.expert_action())
+        if terminated or truncated:
+            break
+    assert info["is_success"], info["failure"]
+    env.close()
