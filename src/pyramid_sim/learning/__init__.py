@@ -7,4 +7,13 @@ Importing the package imports none of its modules (the environment needs MuJoCo)
 names them.
 """
 
-__all__ = ["env", "episode", "layout", "lerobot_format", "lerobot_meta", "record"]
+__all__ = [
+    "env",
+    "episode",
+    "layout",
+    "lerobot_format",
+    "lerobot_meta",
+    "outcome",
+    "randomize",
+    "record",
+]

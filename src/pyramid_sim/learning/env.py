@@ -15,7 +15,6 @@ stops a build); truncated at the build's time limit.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 from typing import Any
 
@@ -25,15 +24,13 @@ from gymnasium import spaces
 
 from ..api import resolve
 from ..choices import ArmChoice
-from ..output.judge import judge, placement_errors, within
-from ..output.result import Tolerances
+from ..output.judge import judge
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 from . import layout as lay
 from . import randomize as rnd
+from .outcome import PlacementWatch, episode_failure
 
-REST_SPEED = 1e-3  # m/s: a brick slower than this is at rest
-OFF_TABLE = 0.05  # m below the table top: a brick down there has left it
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
 
@@ -67,7 +64,6 @@ class BuildEnv(gymnasium.Env):
         self.drawn: dict[str, Any] = {}  # this episode's randomization
         self.render_mode = render_mode
         self.render_size = render_size
-        self.tolerances = Tolerances()
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(
             self._loop.model, self._loop.handles, self.config.robot_description
@@ -88,10 +84,9 @@ class BuildEnv(gymnasium.Env):
         self._eyes: Any = None  # the cameras' renderer, made at the first observation
         self._state = np.zeros(self.layout.size)
         h = self._loop.handles  # addresses are the same in every episode's compiled scene
-        self._lin_vel = np.array([[v, v + 1, v + 2] for v in h.brick_dofs])
         self._brick_q = lay.brick_index(h)
         self._steps = 0
-        self._placed: set[int] = set()
+        self._placing = PlacementWatch(self._loop)
         self._renderer: Any = None
         self._expert_done = False
 
@@ -117,7 +112,7 @@ class BuildEnv(gymnasium.Env):
         super().reset(seed=seed)
         self.close()  # a renderer is made for one compiled model
         self._loop = self._new_loop(self.config.seed if seed is None else seed)
-        self._placed = set()
+        self._placing = PlacementWatch(self._loop)
         self._expert_done = False
         self._steps = 0
         info = {"sim_time_s": 0.0, "bricks_placed": 0, "randomization": self.drawn}
@@ -128,16 +123,17 @@ class BuildEnv(gymnasium.Env):
     ) -> tuple[dict[str, np.ndarray], float, bool, bool, dict[str, Any]]:
         command = np.clip(np.asarray(action, dtype=np.float64), self.layout.low, self.layout.high)
         failure = self._loop.apply(command)
-        newly = self._newly_placed()
-        failure = failure or self._broken()
-        success = len(self._placed) == len(self.plan.bricks)
+        newly = self._placing.update(self._loop)
+        self._steps += 1
+        failure = failure or episode_failure(self._loop, self._steps % CHECK_EVERY == 0)
+        success = self._placing.count == len(self.plan.bricks)
         # The build's time limit ends an episode as truncated, whatever stopped the loop there.
         truncated = not success and self._loop.data.time > self.config.max_sim_time
         terminated = not truncated and (success or failure is not None)
 
         info: dict[str, Any] = {
             "sim_time_s": float(self._loop.data.time),
-            "bricks_placed": len(self._placed),
+            "bricks_placed": self._placing.count,
             "failure": failure,
             "is_success": success,
         }
@@ -203,52 +199,6 @@ class BuildEnv(gymnasium.Env):
         """The command that keeps both arms and hands as they are commanded now."""
         loop = self._loop
         return loop.data.ctrl[loop.handles.ctrl_index].copy()
-
-    def _newly_placed(self) -> int:
-        """Targets that have just come to hold a brick at rest within the tolerances."""
-        d, h = self._loop.data, self._loop.handles
-        spawned = self._loop.spawner.next_slot
-        speeds = np.linalg.norm(d.qvel[self._lin_vel[:spawned]], axis=1)
-        resting = np.flatnonzero(speeds <= REST_SPEED)
-        if resting.size == 0:
-            return 0
-        xy = d.qpos[self._brick_q[resting, :2]]
-        near = self.tolerances.xy_mm / 1000.0
-        newly = 0
-        for target in self.plan.bricks:
-            if target.index in self._placed:
-                continue
-            pose = target.target.pose
-            close = resting[np.hypot(xy[:, 0] - pose.x, xy[:, 1] - pose.y) <= near]
-            for slot in close:  # the full check only for a brick across from its target
-                q = h.brick_qpos[slot]
-                errors = placement_errors(
-                    d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], target.target.pose
-                )
-                if within(self.tolerances, *errors):
-                    self._placed.add(target.index)
-                    newly += 1
-                    break
-        return newly
-
-    def _broken(self) -> str | None:
-        """A failure the build's own stops do not end on at once."""
-        loop, top = self._loop, self.config.layout.table_top_z
-        monitor = loop.monitor
-        self._steps += 1
-        if self._steps % CHECK_EVERY == 0:
-            monitor.flush()
-        if monitor.arm_arm_contacts:
-            return f"arm-arm contact at t = {loop.data.time:.3f} s"
-        if monitor.speed_ratio > 1.0:
-            return f"a joint moved at {monitor.speed_ratio:.2f} of its velocity limit"
-        if monitor.torque_ratio > 1.0:
-            return f"a joint demanded {monitor.torque_ratio:.2f} of its torque limit"
-        for slot in range(loop.spawner.next_slot):  # every brick set on the spot so far
-            z = loop.data.qpos[loop.handles.brick_qpos[slot] + 2]
-            if z < top - OFF_TABLE or not math.isfinite(z):
-                return f"a brick (magazine slot {slot}) left the table"
-        return None
 
 
 def _renderer(model: Any, width: int, height: int) -> Any:

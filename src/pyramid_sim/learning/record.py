@@ -138,30 +138,18 @@ def record(
     robot = env.config.robot_description.name
     spec = env.plan.spec
     task = TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
-    extra = {
-        "pyramid_sim": {
-            "version": __version__,
-            "structure": spec.name,
-            "size": dict(spec.size),
-            "primitives": list(PRIMITIVES),
-            "first_seed": config.first_seed,
-            "cameras": {
-                c: n
-                for c, n in camera_names(env.config.robot_description).items()
-                if c in config.cameras
-            },
-        }
-    }
+    extra = _dataset_extra(env, config)
     records = _records(out)
-    for index, rec in records.items():
-        if rec["task"] != task or rec["fps"] != config.fps or rec["features"] != list(feats):
-            raise ConfigError(
-                f"out: {str(out)!r} holds episodes of another recording (episode {index}: "
-                f"{rec['task']!r} at {rec['fps']} fps); accepted a new folder or the same "
-                "recording's"
-            )
+    _check_same_recording(out, records, task, config, feats)
     _clear_unrecorded(out, set(records))
-    added, failed = 0, [i for i, r in records.items() if not r["success"]]
+    meta: dict[str, Any] = {
+        "fps": config.fps,
+        "robot_type": f"{robot}_bimanual",
+        "features": feats,
+        "task": task,
+        "extra": extra,
+    }
+    added = 0
     try:
         for episode in range(config.episodes):
             if episode in records:
@@ -184,26 +172,51 @@ def record(
             }
             with signals_held():  # the files and the record land together
                 files.commit()
+                records[episode] = rec
                 _write_text(
                     out / RECORDS / f"episode_{episode:06d}.json", json.dumps(rec, indent=1) + "\n"
                 )
-                records[episode] = rec
-                write_meta(
-                    out,
-                    [r["row"] for r in records.values()],
-                    config.fps,
-                    f"{robot}_pair" if robot == "panda" else robot,
-                    feats,
-                    task,
-                    extra,
-                )
+                write_meta(out, [r["row"] for r in records.values()], **meta)
             added += 1
-            if not end.success:
-                failed.append(episode)
     finally:
         env.close()
     frames = sum(r["row"]["length"] for r in records.values())
-    return Recorded(out, len(records), frames, added, tuple(sorted(failed)))
+    failed = tuple(sorted(i for i, r in records.items() if not r["success"]))
+    return Recorded(out, len(records), frames, added, failed)
+
+
+def _dataset_extra(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
+    """What info.json says of the recording beyond LeRobot's own keys (lerobot ignores it)."""
+    spec = env.plan.spec
+    named = camera_names(env.config.robot_description)
+    return {
+        "pyramid_sim": {
+            "version": __version__,
+            "structure": spec.name,
+            "size": dict(spec.size),
+            "primitives": list(PRIMITIVES),
+            "first_seed": config.first_seed,
+            "randomize": list(config.randomize),
+            "cameras": {c: n for c, n in named.items() if c in config.cameras},
+        }
+    }
+
+
+def _check_same_recording(
+    out: Path,
+    records: dict[int, dict[str, Any]],
+    task: str,
+    config: RecordConfig,
+    feats: dict[str, fmt.Feature],
+) -> None:
+    """ConfigError if `out` holds episodes of another structure, rate or features."""
+    for index, rec in records.items():
+        if rec["task"] != task or rec["fps"] != config.fps or rec["features"] != list(feats):
+            raise ConfigError(
+                f"out: {str(out)!r} holds episodes of another recording (episode {index}: "
+                f"{rec['task']!r} at {rec['fps']} fps); accepted a new folder or the same "
+                "recording's"
+            )
 
 
 def _film_episode(
