@@ -11,6 +11,10 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 KEYS = (
+    "env_steps_per_s",
+    "env_to_build_ratio",
+    "record_to_build_ratio",
+    "record_frames_per_s",
     "bare_steps_per_s",
     "build_steps_per_s",
     "build_to_bare_ratio",

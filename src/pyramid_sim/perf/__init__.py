@@ -5,8 +5,9 @@ the build's own physics replayed alone), because these machines are noisy: two r
 apart differ by up to 2x in absolute speed.
 
     figures.py   what is measured (`BenchConfig`, `run_all`)
+    learning_figures.py  the environment's and the recorder's speed against the build's
     targets.py   what each figure is held to, and the printed table
     timers.py    timers wrapped round the calls the IK cannot do without
 """
 
-__all__ = ["figures", "targets", "timers"]
+__all__ = ["figures", "learning_figures", "targets", "timers"]

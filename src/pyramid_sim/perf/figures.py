@@ -247,4 +247,8 @@ def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str
     figures["sweep_workers_all"] = counts[-1]
     figures["sweep_builds_per_hour_all"] = figures[f"sweep_builds_per_hour_{counts[-1]}"]
     figures["sweep_scaling_all"] = figures["sweep_builds_per_hour_all"] / one
+    progress("environment and recording")
+    from .learning_figures import learning_figures
+
+    figures.update(learning_figures(spec, bench.robot))
     return figures

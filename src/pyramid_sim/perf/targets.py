@@ -66,6 +66,8 @@ TARGETS = (
     Target("video_ms_per_frame", 33.0, False, "< 33 ms"),
     Target("sweep_scaling", 1.8, True, ">= 1.8"),
     Target("sweep_scaling_all", 0.0, True, ">= 0.8 x workers"),
+    Target("env_to_build_ratio", 0.8, True, ">= 0.8"),
+    Target("record_to_build_ratio", 3.0, False, "<= 3"),
 )
 
 
@@ -102,6 +104,11 @@ ROWS = (
     ("sweep_scaling", "sweep scaling, 2 workers / 1", "{:.2f}"),
     ("sweep_builds_per_hour_all", "sweep, all cores' workers, builds/hour", "{:,.1f}"),
     ("sweep_scaling_all", "sweep scaling, all cores' workers / 1", "{:.2f}"),
+    ("env_steps_per_s", "environment steps/s, expert, no images", "{:,.0f}"),
+    ("env_to_build_ratio", "environment / the build's control rate", "{:.2f}"),
+    ("record_s_three_cameras", "recorded episode, three 224x224 cameras, s", "{:.1f}"),
+    ("record_to_build_ratio", "recorded episode / the same without cameras", "{:.2f}"),
+    ("record_frames_per_s", "recorded frames a second (three cameras)", "{:.1f}"),
 )
 
 
