@@ -156,3 +156,16 @@ def test_the_time_limit_truncates_an_episode():
     assert truncated and not terminated and not info["is_success"]
     assert 1.0 < info["sim_time_s"] < 1.02 and "within 1 s" in info["failure"]
     env.close()
+
+
+def test_end_effector_actions_go_through_the_builds_own_ik():
+    """action_mode="ee": each arm's tool-pose change and finger gap. The expert's moves as
+    such actions still build the structure; the checker passes."""
+    env = gymnasium.make(ENV, structure="pyramid", layers=1, action_mode="ee")
+    assert env.action_space.shape == (10,)
+    check_env(env.unwrapped, skip_render_check=True)
+    _, obs, rewards, terminated, truncated, info = _rollout(env, seed=0)
+    assert terminated and info["is_success"] and sum(rewards) == 1
+    env.close()
+    with pytest.raises(pyramid_sim.ConfigError, match="action mode: unknown 'torque'"):
+        gymnasium.make(ENV, structure="pyramid", layers=1, action_mode="torque")

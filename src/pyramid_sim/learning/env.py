@@ -19,20 +19,27 @@ from dataclasses import replace
 from typing import Any
 
 import gymnasium
+import mink
 import numpy as np
 from gymnasium import spaces
 
 from ..api import resolve
 from ..choices import ArmChoice
+from ..errors import ConfigError
 from ..output.judge import judge
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
+from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
+from .ee_control import EndEffectorControl
 from .outcome import PlacementWatch, episode_failure
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
+
+
+ACTION_MODES = ("joint", "ee")
 
 
 class BuildEnv(gymnasium.Env):
@@ -50,9 +57,21 @@ class BuildEnv(gymnasium.Env):
         cameras: tuple[str, ...] = (),
         image_size: tuple[int, int] = (224, 224),
         randomize: tuple[str, ...] = (),
+        action_mode: str = "joint",
         **options: Any,
     ) -> None:
-        own = ("arms", "render_mode", "render_size", "cameras", "image_size", "randomize")
+        own = (
+            "arms",
+            "render_mode",
+            "render_size",
+            "cameras",
+            "image_size",
+            "randomize",
+            "action_mode",
+        )
+        if action_mode not in ACTION_MODES:
+            raise ConfigError(f"action mode: unknown {action_mode!r}; accepted joint or ee")
+        self.action_mode = action_mode
         options = dict(options)
         self.config, spec = resolve(structure, options.pop("config", None), options, own=own)
         self.cameras = tuple(cameras)
@@ -69,7 +88,14 @@ class BuildEnv(gymnasium.Env):
             self._loop.model, self._loop.handles, self.config.robot_description
         )
         n = self.layout.bricks
-        self.action_space = spaces.Box(self.layout.low, self.layout.high, dtype=np.float64)
+        self._ee = EndEffectorControl(self.layout)
+        self._ee.reset(self._loop)
+        self._box = (
+            self._ee.space
+            if action_mode == "ee"
+            else spaces.Box(self.layout.low, self.layout.high, dtype=np.float64)
+        )
+        self.action_space = self._box
         observed: dict[str, spaces.Space] = {
             "state": spaces.Box(-np.inf, np.inf, (self.layout.size,), dtype=np.float64),
             "bricks": spaces.Box(-np.inf, np.inf, (n, len(lay.BRICK_FIELDS)), dtype=np.float64),
@@ -115,14 +141,19 @@ class BuildEnv(gymnasium.Env):
         self._placing = PlacementWatch(self._loop)
         self._expert_done = False
         self._steps = 0
+        self._ee.reset(self._loop)
         info = {"sim_time_s": 0.0, "bricks_placed": 0, "randomization": self.drawn}
         return self._observe(), info
 
     def step(
         self, action: np.ndarray
     ) -> tuple[dict[str, np.ndarray], float, bool, bool, dict[str, Any]]:
-        command = np.clip(np.asarray(action, dtype=np.float64), self.layout.low, self.layout.high)
-        failure = self._loop.apply(command)
+        action = np.clip(np.asarray(action, dtype=np.float64), self._box.low, self._box.high)
+        try:
+            command = self._ee.command(self._loop, action) if self.action_mode == "ee" else action
+            failure = self._loop.apply(command)
+        except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
+            failure = no_motion_reason(self._loop.data.time)
         newly = self._placing.update(self._loop)
         self._steps += 1
         failure = failure or episode_failure(self._loop, self._steps % CHECK_EVERY == 0)
@@ -144,6 +175,10 @@ class BuildEnv(gymnasium.Env):
     def expert_action(self) -> np.ndarray:
         """The scripted builder's action for this step; once it has built everything and its
         arms are back, it holds them where they are."""
+        if self.action_mode == "ee":
+            action = None if self._expert_done else self._ee.expert(self._loop)
+            self._expert_done = action is None
+            return self._ee.hold(self._loop) if action is None else action
         command = None if self._expert_done else self._loop.expert_command()
         if command is None:
             self._expert_done = True

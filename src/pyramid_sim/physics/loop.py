@@ -146,12 +146,26 @@ class BuildLoop:
         and gripper gaps, in `handles.ctrl_index` order. It feeds the spot, tells the schedule
         where the arms are, advances each arm's primitive and solves the IK; None once every
         brick is placed and has settled. Raises mink.NoSolutionFound if the IK has none."""
+        if not self.expert_targets():
+            return None
+        self._solve_ik()
+        return self.command()
+
+    def expert_targets(self) -> bool:
+        """The scripted builder's half of a control step before the IK: it feeds the spot,
+        tells the schedule where the arms are and advances each arm's primitive, aiming the
+        IK at its pose (`dispatch.runners[arm].pose`, the gap `.gap`). False once every brick
+        is placed and has settled."""
         self._feed_spot()
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
-            return None
+            return False
         self._drive_arms()
-        self._solve_ik()
+        return True
+
+    def command(self) -> np.ndarray:
+        """The IK's joint solution and the hands' gaps as a command, `handles.ctrl_index`
+        order (a view, rewritten each control step)."""
         command = self._command
         command[self._command_q] = self.ik.configuration.q[self._ik_q]
         command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
