@@ -170,6 +170,7 @@ def record(
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist"),
     image_size: tuple[int, int] = (224, 224),
     randomize: tuple[str, ...] = (),
+    workers: int = 1,
     on_frame: Any = None,
     config: SimConfig | None = None,
     **options: Any,
@@ -179,7 +180,17 @@ def record(
     `image_size` (height, width), each episode's `randomize` parts drawn from its seed.
     Episodes already in `out` are kept and not run again.
     `options` as for `build`. Returns the `Recorded` summary."""
-    own = ("episodes", "seed", "fps", "cameras", "image_size", "randomize", "on_frame", "arms")
+    own = (
+        "episodes",
+        "seed",
+        "fps",
+        "cameras",
+        "image_size",
+        "randomize",
+        "workers",
+        "on_frame",
+        "arms",
+    )
     config, spec = resolve(name, config, dict(options), own=own)
     from .learning.record import RecordConfig
 
@@ -193,6 +204,7 @@ def record(
         tuple(cameras),
         tuple(image_size),  # type: ignore[arg-type]
         tuple(randomize),
+        workers,
     )
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run

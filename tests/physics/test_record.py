@@ -195,3 +195,22 @@ def test_each_episode_keeps_its_randomization(tmp_path):
     assert records[0]["result"]["inputs"]["settings"]["brick"]["friction"] == pytest.approx(
         draws[0]["friction"]
     )
+
+
+def test_episodes_filmed_in_parallel_make_the_serial_runs_dataset(dataset, tmp_path):
+    """Two workers film episodes apart; landing them in order gives the same frames, indices,
+    episode rows and statistics as one after another."""
+    root, recorded = dataset
+    parallel = _record(tmp_path / "p", 2, workers=2)
+    assert parallel.frames == recorded.frames and parallel.episodes == 2
+    for e in range(2):
+        ours = pq.read_table(tmp_path / f"p/data/chunk-000/file-{e:03d}.parquet")
+        theirs = pq.read_table(root / f"data/chunk-000/file-{e:03d}.parquet")
+        assert ours.equals(theirs), e
+    rows = [
+        pq.read_table(r / "meta/episodes/chunk-000/file-000.parquet").to_pylist()
+        for r in (tmp_path / "p", root)
+    ]
+    assert rows[0] == rows[1]
+    assert (tmp_path / "p/meta/stats.json").read_text() == (root / "meta/stats.json").read_text()
+    assert not (tmp_path / "p/.staging").exists()

@@ -68,6 +68,12 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
         "camera (default none)",
     )
+    p.add_argument(
+        "--workers",
+        type=whole("workers", "1 to 64"),
+        default=1,
+        help="episodes filmed at once, each in a process (default 1)",
+    )
     add_out_args(p, Path("runs/dataset"))
 
 
@@ -116,6 +122,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             image_size=args.image_size,
             on_frame=on_frame,
             randomize=tuple(r.strip() for r in args.randomize.split(",") if r.strip()),
+            workers=args.workers,
             config=config,
             **sizes,
         )

@@ -9,6 +9,7 @@ result.json) are in place, which happens together, Ctrl-C and SIGTERM held for t
 from __future__ import annotations
 
 import json
+import shutil
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -23,6 +24,7 @@ from .env import BuildEnv
 from .episode import CONTROL_HZ, PRIMITIVES, Frame, expert_episode
 from .layout import camera_names, check_cameras
 from .lerobot_meta import write_meta
+from .staging import STAGING, land, staged
 
 RECORDS = "meta/pyramid_sim"
 TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
@@ -41,6 +43,7 @@ class RecordConfig:
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
     image_size: tuple[int, int] = (224, 224)
     randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
+    workers: int = 1  # episodes filmed at once, each in a process of its own
 
     def __post_init__(self) -> None:
         if not 1 <= self.episodes <= 100_000:
@@ -56,6 +59,8 @@ class RecordConfig:
                 f"image size: {height}x{width}; accepted even sizes, 16 to 1080 high and 16 to "
                 "1920 wide"
             )
+        if not 1 <= self.workers <= 64:
+            raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
         if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
             raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
 
@@ -124,6 +129,7 @@ def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
         chunk, file = int(path.parent.name.split("-")[1]), int(path.stem.split("-")[1])
         if chunk * fmt.CHUNK_SIZE + file not in recorded:
             path.unlink()
+    shutil.rmtree(root / STAGING, ignore_errors=True)
 
 
 def record(
@@ -150,36 +156,35 @@ def record(
         "extra": extra,
     }
     added = 0
+    missing = [e for e in range(config.episodes) if e not in records]
     try:
-        for episode in range(config.episodes):
-            if episode in records:
-                continue
+        for result in staged(config, env, missing, out, config.workers, on_frame):
+            episode, end = result["episode"], result["end"]
             first = sum(r["row"]["length"] for i, r in records.items() if i < episode)
-            files = fmt.EpisodeFiles(out, episode, first, config.fps, feats)
-            end, row = _film_episode(env, files, config, on_frame)
-            rec = {
-                "episode_index": episode,
-                "seed": config.first_seed + episode,
-                "task": task,
-                "fps": config.fps,
-                "features": list(feats),
-                "success": end.success,
-                "failure": end.failure,
-                "randomization": env.drawn,
-                "result": end.result,
-                "config": asdict(config),
-                "row": _jsonable(row),
-            }
             with signals_held():  # the files and the record land together
-                files.commit()
-                records[episode] = rec
+                row = land(out, result, first)
+                records[episode] = {
+                    "episode_index": episode,
+                    "seed": config.first_seed + episode,
+                    "task": task,
+                    "fps": config.fps,
+                    "features": list(feats),
+                    "success": end.success,
+                    "failure": end.failure,
+                    "randomization": result["randomization"],
+                    "result": end.result,
+                    "config": asdict(config),
+                    "row": _jsonable(row),
+                }
                 _write_text(
-                    out / RECORDS / f"episode_{episode:06d}.json", json.dumps(rec, indent=1) + "\n"
+                    out / RECORDS / f"episode_{episode:06d}.json",
+                    json.dumps(records[episode], indent=1) + "\n",
                 )
                 write_meta(out, [r["row"] for r in records.values()], **meta)
             added += 1
     finally:
         env.close()
+        shutil.rmtree(out / STAGING, ignore_errors=True)
     frames = sum(r["row"]["length"] for r in records.values())
     failed = tuple(sorted(i for i, r in records.items() if not r["success"]))
     return Recorded(out, len(records), frames, added, failed)
@@ -219,7 +224,7 @@ def _check_same_recording(
             )
 
 
-def _film_episode(
+def film_episode(
     env: BuildEnv,
     files: fmt.EpisodeFiles,
     config: RecordConfig,
