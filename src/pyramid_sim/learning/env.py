@@ -60,15 +60,8 @@ class BuildEnv(gymnasium.Env):
         action_mode: str = "joint",
         **options: Any,
     ) -> None:
-        own = (
-            "arms",
-            "render_mode",
-            "render_size",
-            "cameras",
-            "image_size",
-            "randomize",
-            "action_mode",
-        )
+        own = ("arms", "render_mode", "render_size", "cameras", "image_size", "randomize",
+               "action_mode")  # fmt: skip
         if action_mode not in ACTION_MODES:
             raise ConfigError(f"action mode: unknown {action_mode!r}; accepted joint or ee")
         self.action_mode = action_mode
@@ -87,7 +80,6 @@ class BuildEnv(gymnasium.Env):
         self.layout = lay.layout(
             self._loop.model, self._loop.handles, self.config.robot_description
         )
-        n = self.layout.bricks
         self._ee = EndEffectorControl(self.layout)
         self._ee.reset(self._loop)
         self._box = (
@@ -96,16 +88,7 @@ class BuildEnv(gymnasium.Env):
             else spaces.Box(self.layout.low, self.layout.high, dtype=np.float64)
         )
         self.action_space = self._box
-        observed: dict[str, spaces.Space] = {
-            "state": spaces.Box(-np.inf, np.inf, (self.layout.size,), dtype=np.float64),
-            "bricks": spaces.Box(-np.inf, np.inf, (n, len(lay.BRICK_FIELDS)), dtype=np.float64),
-        }
-        if self.cameras:
-            height, width = image_size
-            observed["images"] = spaces.Dict(
-                {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in self.cameras}
-            )
-        self.observation_space = spaces.Dict(observed)
+        self.observation_space = observation_space(self.layout, self.cameras, image_size)
         self._camera_ids = lay.camera_names(self.config.robot_description)
         self._eyes: Any = None  # the cameras' renderer, made at the first observation
         self._state = np.zeros(self.layout.size)
@@ -234,6 +217,24 @@ class BuildEnv(gymnasium.Env):
         """The command that keeps both arms and hands as they are commanded now."""
         loop = self._loop
         return loop.data.ctrl[loop.handles.ctrl_index].copy()
+
+
+def observation_space(
+    layout: lay.Layout, cameras: tuple[str, ...], image_size: tuple[int, int]
+) -> spaces.Dict:
+    """The state and the bricks (every magazine brick's pose), and each camera's image."""
+    observed: dict[str, spaces.Space] = {
+        "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
+        "bricks": spaces.Box(
+            -np.inf, np.inf, (layout.bricks, len(lay.BRICK_FIELDS)), dtype=np.float64
+        ),
+    }
+    if cameras:
+        height, width = image_size
+        observed["images"] = spaces.Dict(
+            {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in cameras}
+        )
+    return spaces.Dict(observed)
 
 
 def _renderer(model: Any, width: int, height: int) -> Any:
