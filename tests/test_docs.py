@@ -45,3 +45,10 @@ def test_code_and_docs_describe_the_present_not_the_issue_tracker():
         if f.name != "test_docs.py"
     ]
     assert not found, found
+
+
+def test_the_performance_page_stays_short_and_present():
+    """docs/performance.md is the present's figures; the history goes to CHANGELOG.md."""
+    lines = (ROOT / "docs" / "performance.md").read_text().splitlines()
+    assert len(lines) < 200, len(lines)
+    assert (ROOT / "CHANGELOG.md").exists()
