@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .choices import ArmChoice
 from .config import SimConfig, VideoConfig, check_film
@@ -22,6 +22,9 @@ from .core.structures import StructureSpec
 from .errors import ConfigError, MachineError
 from .output.result import BuildResult
 from .params import BY_NAME
+
+if TYPE_CHECKING:  # the recorder needs MuJoCo: imported when `record` runs
+    from .learning.record import Recorded
 
 RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot", "schedule")
 
@@ -174,7 +177,7 @@ def record(
     on_frame: Any = None,
     config: SimConfig | None = None,
     **options: Any,
-) -> Any:
+) -> Recorded:
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
     `image_size` (height, width), each episode's `randomize` parts drawn from its seed.
