@@ -1,6 +1,6 @@
 """`pyramid-sim sweep --backend ray --ray-address` against a real two-node Ray cluster.
 
-The cluster is started as the README's recipe says, on a head that has never run Ray: a token
+The cluster is started as docs/sweeps.md's recipe says, on a head that has never run Ray: a token
 made with `ray get-auth-token --generate`, then `ray start --head` and `ray start --address` for a
 second node, both on this machine with one CPU each, every command with RAY_AUTH_MODE=token. A
 sweep with it set runs its two builds on the two nodes; a client elsewhere (no token, no
@@ -169,7 +169,7 @@ def _alive_nodes(address: str, count: int, env: dict[str, str]) -> list[dict]:
 
 @pytest.fixture(scope="module")
 def cluster(tmp_path_factory):
-    """A head and a worker node on this machine, one CPU each, started by the README's recipe
+    """A head and a worker node on this machine, one CPU each, started by docs/sweeps.md's recipe
     on a head that has never run Ray; yields its address (as a user on the head types it), its
     nodes before any sweep, its temporary folder, the head's HOME and what `ray start --head`
     printed."""
