@@ -169,3 +169,32 @@ def test_end_effector_actions_go_through_the_builds_own_ik():
     env.close()
     with pytest.raises(pyramid_sim.ConfigError, match="action mode: unknown 'torque'"):
         gymnasium.make(ENV, structure="pyramid", layers=1, action_mode="torque")
+
+
+@pytest.mark.parametrize("fault", ["contact", "speed", "torque", "off_table"])
+def test_each_episode_failure_fires_and_is_named(fault):
+    """What ends an episode though a build would go on: each one, made to happen."""
+    from pyramid_sim.learning.outcome import episode_failure
+
+    env = gymnasium.make(ENV, structure="pyramid", layers=1).unwrapped
+    env.reset(seed=0)
+    loop = env.loop
+    assert episode_failure(loop, reduce=True) is None
+    if fault == "contact":
+        loop.monitor.arm_arm_contacts = 1
+    elif fault == "speed":
+        loop.monitor.speed_ratio = 1.2
+    elif fault == "torque":
+        loop.monitor.torque_ratio = 1.3
+    else:
+        loop.custody.feed_spot()  # a brick on the spot, then knocked to the floor
+        q = loop.handles.brick_qpos[0]
+        loop.data.qpos[q + 2] = -0.5
+    words = {
+        "contact": "arm-arm contact",
+        "speed": "1.20 of its velocity limit",
+        "torque": "1.30 of its torque limit",
+        "off_table": "slot 0) left the table",
+    }
+    assert words[fault] in episode_failure(loop, reduce=False)
+    env.close()

@@ -167,6 +167,7 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
         (["--cameras", "nose"], "cameras: unknown 'nose'; accepted overview, front"),
         (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
         (["--image-size", "15"], "image size: 15x15; accepted even sizes"),
+        (["--workers", "0"], "workers: 0 is out of range; accepted 1 to 64"),
     ],
 )
 def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
