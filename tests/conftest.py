@@ -74,6 +74,52 @@ def teleport():
     return move
 
 
+def measured_on_target(plan, **changes):
+    """What the loop would measure of a clean build of `plan`: every brick at rest on its
+    target, nothing past a limit; `changes` replace fields (as a fault would)."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from pyramid_sim.core.measurements import Measurements
+    from pyramid_sim.core.poses import yaw_quaternion
+
+    poses = [b.target.pose for b in plan.bricks]
+    clean = Measurements(
+        plan=plan,
+        slot_of={b.index: i for i, b in enumerate(plan.bricks)},
+        final_pos=np.array([p.position for p in poses]),
+        final_quat=np.array([yaw_quaternion(p.yaw) for p in poses]),
+        slip_mm={b.index: 1.0 for b in plan.bricks},
+        drops=(),
+        knocks=(),
+        sim_time=12.0,
+        wall_time=1.0,
+        arm_arm_contacts=0,
+        arm_body_contacts=0,
+        zone_violations=0,
+        finger_limit_mm=0.0,
+        joint_speed_ratio=0.5,
+        joint_torque_ratio=0.5,
+        torque_joint=3,
+        speed_joint=0,
+        warnings={},
+        failure=None,
+        idle_motion_mm=0.0,
+        contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
+        closest_arm_m=0.1,
+        closest_arm_time=1.0,
+        physics_steps=6000,
+    )
+    return replace(clean, **changes)
+
+
+@pytest.fixture
+def on_target():
+    """`measured_on_target`, for tests of the judge."""
+    return measured_on_target
+
+
 @pytest.fixture
 def fake_build(monkeypatch):
     """Stand in for the physics behind `build` (the reach check and jobs.build), so the command
@@ -82,13 +128,8 @@ def fake_build(monkeypatch):
     (as tests/test_judge.py does), `frames` for the frames filmed a brick (and as many after the
     last, as the scene settles), `during(i)` to act before brick i is reported placed."""
     import types
-    from dataclasses import replace
 
-    import numpy as np
-
-    from pyramid_sim.core.measurements import Measurements
     from pyramid_sim.core.plan import make_plan
-    from pyramid_sim.core.poses import yaw_quaternion
     from pyramid_sim.output.judge import judge
 
     fake = types.SimpleNamespace(changes={}, frames=0, during=None)
@@ -113,34 +154,7 @@ def fake_build(monkeypatch):
             if on_placed is not None:
                 on_placed(i + 1)
         film()
-        poses = [b.target.pose for b in plan.bricks]
-        measured = Measurements(
-            plan=plan,
-            slot_of={b.index: i for i, b in enumerate(plan.bricks)},
-            final_pos=np.array([p.position for p in poses]),
-            final_quat=np.array([yaw_quaternion(p.yaw) for p in poses]),
-            slip_mm={b.index: 1.0 for b in plan.bricks},
-            drops=(),
-            knocks=(),
-            sim_time=12.0,
-            wall_time=1.0,
-            arm_arm_contacts=0,
-            arm_body_contacts=0,
-            zone_violations=0,
-            finger_limit_mm=0.0,
-            joint_speed_ratio=0.5,
-            joint_torque_ratio=0.5,
-            torque_joint=3,
-            speed_joint=0,
-            warnings={},
-            failure=None,
-            idle_motion_mm=0.0,
-            contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
-            closest_arm_m=0.1,
-            closest_arm_time=1.0,
-            physics_steps=6000,
-        )
-        return judge(replace(measured, **fake.changes), config)
+        return judge(measured_on_target(plan, **fake.changes), config)
 
     reach = types.ModuleType("pyramid_sim.physics.reach")
     reach.prepare = prepare

@@ -8,46 +8,16 @@ import pytest
 
 import pyramid_sim
 from pyramid_sim.config import SimConfig
-from pyramid_sim.core.measurements import Measurements
 from pyramid_sim.output.judge import judge
 
 CONFIG = SimConfig()
 
 
-def _measured(**changes) -> Measurements:
-    plan = pyramid_sim.plan("pyramid", layers=1)
-    target = plan.bricks[0].target.pose
-    good = Measurements(
-        plan=plan,
-        slot_of={0: 0},
-        final_pos=np.array([target.position]),
-        final_quat=np.array([[1.0, 0.0, 0.0, 0.0]]),
-        slip_mm={0: 1.0},
-        drops=(),
-        knocks=(),
-        sim_time=12.0,
-        wall_time=1.0,
-        arm_arm_contacts=0,
-        arm_body_contacts=0,
-        zone_violations=0,
-        finger_limit_mm=0.0,
-        joint_speed_ratio=0.5,
-        joint_torque_ratio=0.5,
-        torque_joint=3,
-        speed_joint=8,
-        warnings={},
-        failure=None,
-        idle_motion_mm=0.0,
-        contact_friction={"brick_brick": 1.0, "brick_table": 1.0, "pad_brick": 1.0},
-        closest_arm_m=0.1,
-        closest_arm_time=1.0,
-        physics_steps=6000,
-    )
-    return replace(good, **changes)
+PLAN = pyramid_sim.plan("pyramid", layers=1)
 
 
-def test_a_clean_build_passes_every_check():
-    result = judge(_measured(), CONFIG)
+def test_a_clean_build_passes_every_check(on_target):
+    result = judge(on_target(PLAN), CONFIG)
     assert result.success and result.failure_reason is None and result.failed_checks == ()
     assert all(result.checks.values()) and result.slip_limit_mm == 5.0
 
@@ -66,7 +36,7 @@ def test_a_clean_build_passes_every_check():
         ({"arm_body_contacts": 1}, "arm_body_contacts", "1 contacts of an arm with the robot's"),
         ({"zone_violations": 4}, "shared_zone", "both arms in one zone"),
         (
-            {"joint_speed_ratio": 1.02},
+            {"joint_speed_ratio": 1.02, "speed_joint": 8},
             "joint_speed",
             "the right arm's joint panda_joint2 moved at 1.02 of its velocity limit (2.175 rad/s)",
         ),
@@ -79,34 +49,36 @@ def test_a_clean_build_passes_every_check():
         ({"idle_motion_mm": 52.0}, "idle_bricks", "nobody had touched moved 52.0 mm"),
     ],
 )
-def test_each_check_fails_the_build_and_is_named(changes, check, words):
-    result = judge(_measured(**changes), CONFIG)
+def test_each_check_fails_the_build_and_is_named(changes, check, words, on_target):
+    result = judge(on_target(PLAN, **changes), CONFIG)
     assert not result.success and check in result.failed_checks
     assert result.checks[check] is False
     assert words in result.failure_reason
     assert result.to_dict()["failed_checks"] == list(result.failed_checks)
 
 
-def test_the_slip_limit_is_a_setting():
+def test_the_slip_limit_is_a_setting(on_target):
     strict = replace(CONFIG, slip_limit_mm=0.5)
-    assert "slip" in judge(_measured(), strict).failed_checks
+    assert "slip" in judge(on_target(PLAN), strict).failed_checks
     with pytest.raises(pyramid_sim.ConfigError, match="slip limit"):
         replace(CONFIG, slip_limit_mm=0.0)
 
 
 @pytest.mark.parametrize("limit", [30.0, 31.0, float("nan")])
-def test_a_slip_limit_no_slip_can_reach_is_refused(limit):
+def test_a_slip_limit_no_slip_can_reach_is_refused(limit, on_target):
     """A brick 30 mm out of its grip has been dropped, so no slip of 30 mm or more is ever
     measured: such a limit could never fail a build."""
     with pytest.raises(pyramid_sim.ConfigError, match=r"accepted \(0, 30\): a brick 30 mm"):
         replace(CONFIG, slip_limit_mm=limit)
     assert (
         "slip"
-        in judge(_measured(slip_mm={0: 29.0}), replace(CONFIG, slip_limit_mm=28.5)).failed_checks
+        in judge(
+            on_target(PLAN, slip_mm={0: 29.0}), replace(CONFIG, slip_limit_mm=28.5)
+        ).failed_checks
     )
 
 
-def test_docs_name_every_field_a_result_writes():
+def test_docs_name_every_field_a_result_writes(on_target):
     from dataclasses import fields
     from pathlib import Path
 
@@ -118,7 +90,7 @@ def test_docs_name_every_field_a_result_writes():
     )
 
     text = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
-    doc = judge(_measured(), CONFIG).to_dict()
+    doc = judge(on_target(PLAN), CONFIG).to_dict()
     names = {*doc, *doc["bricks"][0], *doc["inputs"], *doc["checks"]}
     names |= {
         f.name for cls in (BuildResult, BrickResult, BuildInputs, VideoInfo) for f in fields(cls)
@@ -127,9 +99,9 @@ def test_docs_name_every_field_a_result_writes():
     assert not missing, f"docs/outputs.md does not name {missing}"
 
 
-def test_a_baxter_limit_names_the_arm_the_joint_and_the_limit():
+def test_a_baxter_limit_names_the_arm_the_joint_and_the_limit(on_target):
     baxter = replace(CONFIG, robot="baxter")
-    reason = judge(_measured(joint_torque_ratio=1.25, torque_joint=1), baxter).failure_reason
+    reason = judge(on_target(PLAN, joint_torque_ratio=1.25, torque_joint=1), baxter).failure_reason
     assert reason.startswith(
         "the left arm's joint left_s1 demanded 1.25 of its torque limit (50 N m"
     )
