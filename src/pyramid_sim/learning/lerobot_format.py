@@ -1,8 +1,9 @@
 """LeRobot's dataset layout, v3.0, written with pyarrow and PyAV (no torch).
 
 Each episode gets its own data file and its own video file a camera (`chunk-C/file-F`, F the
-episode's index within its chunk of 1000), as lerobot's own writer does once a file is full:
-an episode's files are written under temporary names and renamed into place, and the
+episode's index within its chunk of 1000), as lerobot's own writer does once a file is full.
+An episode's frames are indexed from 0 as it is written; `staging.land` places them in the
+dataset. Files are written under temporary names and renamed into place, and the
 metadata (`meta/info.json`, `meta/stats.json`, `meta/tasks.parquet`,
 `meta/episodes/chunk-000/file-000.parquet`) is rewritten whole after each episode. A record
 killed at any moment leaves the episodes it finished, loadable.
@@ -76,11 +77,11 @@ def location(episode: int) -> tuple[int, int]:
 @dataclass
 class EpisodeFiles:
     """One episode being written: its frames' values gathered, its videos encoded as the
-    frames come. `close()` moves its files into place and returns its metadata row."""
+    frames come. `close()` finishes them and returns its metadata row; `commit()` moves the
+    files into place."""
 
     root: Path
     episode: int
-    first_index: int  # the dataset-wide index of its first frame
     fps: int
     features: dict[str, Feature]
     task_index: int = 0
@@ -142,8 +143,8 @@ class EpisodeFiles:
             "length": length,
             "data/chunk_index": chunk,
             "data/file_index": file,
-            "dataset_from_index": self.first_index,
-            "dataset_to_index": self.first_index + length,
+            "dataset_from_index": 0,  # its frames from 0: landing places them (staging.land)
+            "dataset_to_index": length,
         }
         for key in self._videos:
             row.update(
@@ -183,7 +184,7 @@ class EpisodeFiles:
         columns["timestamp"] = pa.array((frame / self.fps).astype(np.float32))
         columns["frame_index"] = pa.array(frame, type=pa.int64())
         columns["episode_index"] = pa.array(np.full(length, self.episode), type=pa.int64())
-        columns["index"] = pa.array(self.first_index + frame, type=pa.int64())
+        columns["index"] = pa.array(frame, type=pa.int64())
         columns["task_index"] = pa.array(np.full(length, self.task_index), type=pa.int64())
         return pa.table(columns)
 
@@ -203,7 +204,7 @@ class EpisodeFiles:
             ("timestamp", frame / self.fps),
             ("frame_index", frame),
             ("episode_index", np.full_like(frame, self.episode)),
-            ("index", frame + self.first_index),
+            ("index", frame),
             ("task_index", np.full_like(frame, self.task_index)),
         ):
             stats[key] = _summary(values) | {"count": np.array([length])}

@@ -36,7 +36,7 @@ def film_staged(
 
     root = staging_folder(out, episode)
     shutil.rmtree(root, ignore_errors=True)
-    files = fmt.EpisodeFiles(root, episode, 0, config.fps, features(env, config))
+    files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
     end, row = film_episode(env, files, config, on_frame)
     files.commit()  # into the staging folder: the dataset sees nothing yet
     return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
