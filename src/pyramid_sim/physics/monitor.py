@@ -118,9 +118,9 @@ class StepMonitor:
             self._gain * self._ctrl.rows(n) + b0 + b1 * self._qpos.rows(n, self._angles) + b2 * v
         )
         ratio = np.abs(servo + self._gravity.rows(n)) * self._inv_torque
-        speed = np.abs(v) * self._inv_vel
-        if float(speed.max()) > self.speed_ratio:
-            self.speed_ratio, self.speed_joint = float(speed.max()), int(speed.max(axis=0).argmax())
+        per_joint = (np.abs(v) * self._inv_vel).max(axis=0)
+        if float(per_joint.max()) > self.speed_ratio:
+            self.speed_ratio, self.speed_joint = float(per_joint.max()), int(per_joint.argmax())
         peak = float(ratio.max())
         if peak > self.torque_ratio:
             self.torque_ratio, self.torque_joint = peak, int(ratio.max(axis=0).argmax())
