@@ -162,6 +162,22 @@ def _prepare_gl(render: bool) -> None:
         import_physics_for_rendering()
 
 
+# record's own keywords: not settings of the build
+RECORD_KEYWORDS = (
+    "episodes",
+    "seed",
+    "fps",
+    "cameras",
+    "image_size",
+    "randomize",
+    "workers",
+    "backend",
+    "ray_address",
+    "on_frame",
+    "arms",
+)
+
+
 def record(
     out: str | Path,
     name: str = "pyramid-even",
@@ -174,27 +190,20 @@ def record(
     image_size: tuple[int, int] = (224, 224),
     randomize: tuple[str, ...] = (),
     workers: int = 1,
+    backend: str = "process",
+    ray_address: str | None = None,
     on_frame: Any = None,
     config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
-    `image_size` (height, width), each episode's `randomize` parts drawn from its seed.
-    Episodes already in `out` are kept and not run again.
+    `image_size` (height, width), each episode's `randomize` parts drawn from its seed;
+    `workers` episodes at once, in processes here or as Ray tasks (`backend="ray"`, on the
+    cluster at `ray_address` or a Ray started here). Episodes already in `out` are kept and not
+    run again.
     `options` as for `build`. Returns the `Recorded` summary."""
-    own = (
-        "episodes",
-        "seed",
-        "fps",
-        "cameras",
-        "image_size",
-        "randomize",
-        "workers",
-        "on_frame",
-        "arms",
-    )
-    config, spec = resolve(name, config, dict(options), own=own)
+    config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     from .learning.record import RecordConfig
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
@@ -208,7 +217,13 @@ def record(
         tuple(image_size),  # type: ignore[arg-type]
         tuple(randomize),
         workers,
+        backend,
+        ray_address,
     )
+    if backend == "ray":
+        from .sweep.ray_backend import require_ray
+
+        require_ray()
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run
 

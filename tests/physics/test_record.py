@@ -4,6 +4,9 @@ second run adds only the missing episodes, and a stopped run leaves the finished
 
 import json
 import os
+import subprocess
+import sys
+import tempfile
 
 import av
 import numpy as np
@@ -168,6 +171,8 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
         (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
         (["--image-size", "15"], "image size: 15x15; accepted even sizes"),
         (["--workers", "0"], "workers: 0 is out of range; accepted 1 to 64"),
+        (["--backend", "slurm"], "backend: unknown 'slurm'; accepted process, ray"),
+        (["--ray-address", "auto"], "ray address: only with --backend ray"),
     ],
 )
 def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
@@ -215,3 +220,43 @@ def test_episodes_filmed_in_parallel_make_the_serial_runs_dataset(dataset, tmp_p
     assert rows[0] == rows[1]
     assert (tmp_path / "p/meta/stats.json").read_text() == (root / "meta/stats.json").read_text()
     assert not (tmp_path / "p/.staging").exists()
+
+
+def test_episodes_filmed_as_ray_tasks_make_the_serial_runs_dataset(dataset, tmp_path):
+    """Ray tasks film the episodes on their nodes and ship the files back; the dataset is the
+    one filmed here. The local Ray instance keeps its token under HOME and its session under
+    RAY_TMPDIR, both this test's own (the session's sockets need a short path)."""
+    root, recorded = dataset
+    env = {k: v for k, v in os.environ.items() if not k.startswith("RAY_")}
+    env.update(HOME=str(tmp_path / "home"), RAY_USAGE_STATS_ENABLED="0")
+    out = tmp_path / "ray"
+    with tempfile.TemporaryDirectory(prefix="ray", dir="/tmp") as ray_tmp:
+        env["RAY_TMPDIR"] = ray_tmp
+        done = subprocess.run(
+            [sys.executable, "-m", "pyramid_sim.cli", "record", "--structure", "pyramid"]
+            + ["--layers", "1", "--episodes", "2", "--fps", "25", "--cameras", ",".join(CAMERAS)]
+            + ["--image-size", "x".join(map(str, SIZE)), "--workers", "2", "--backend", "ray"]
+            + ["--quiet", "--out", str(out)],
+            capture_output=True,
+            text=True,
+            timeout=600,
+            env=env,
+        )
+    assert done.returncode == 0, done.stderr
+    for e in range(2):
+        data = f"data/chunk-000/file-{e:03d}.parquet"
+        assert pq.read_table(out / data).equals(pq.read_table(root / data)), e
+        for camera in CAMERAS:
+            video = f"videos/observation.images.{camera}/chunk-000/file-{e:03d}.mp4"
+            assert _frames(out / video) == _frames(root / video), (e, camera)
+    rows = [
+        pq.read_table(r / "meta/episodes/chunk-000/file-000.parquet").to_pylist()
+        for r in (out, root)
+    ]
+    assert rows[0] == rows[1]
+    assert not (out / ".staging").exists()
+
+
+def _frames(path):
+    with av.open(str(path)) as video:
+        return [frame.to_ndarray(format="rgb24").tobytes() for frame in video.decode(video=0)]

@@ -89,3 +89,19 @@ def test_the_table_stands_where_the_settings_put_its_top(top):
     for bad in (float("nan"), -0.1, 0.5):
         with pytest.raises(ConfigError, match="table top z"):
             LayoutConfig(table_top_z=bad)
+
+
+def test_the_floor_holds_a_brick_beyond_where_it_is_drawn():
+    """The floor is drawn 8 m square (an infinite plane's grid is slow to draw on the CPU), but
+    it collides as an infinite plane: a brick dropped 20 m out comes to rest on it."""
+    model = build_scene(SimConfig(), 1).model
+    floor = model.geom("floor").id
+    assert model.geom_size[floor][0] == 4.0  # drawn to 4 m from the centre
+    data = mujoco.MjData(model)
+    body = model.body(c.brick_name(0) + "brick")
+    adr = model.jnt_qposadr[body.jntadr[0]]
+    data.qpos[adr : adr + 7] = [20.0, 3.0, -0.5, 1, 0, 0, 0]
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    half_height = model.geom(model.body_geomadr[body.id]).size[2]
+    assert data.qpos[adr + 2] == pytest.approx(-0.671 + half_height, abs=1e-3)

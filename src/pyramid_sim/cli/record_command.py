@@ -9,7 +9,14 @@ from typing import Any
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
-from .args import add_out_args, add_physics_args, add_schedule_arg, add_structure_args, whole
+from .args import (
+    add_out_args,
+    add_physics_args,
+    add_schedule_arg,
+    add_structure_args,
+    one_of,
+    whole,
+)
 from .progress import Progress
 
 CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
@@ -72,7 +79,18 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "--workers",
         type=whole("workers", "1 to 64"),
         default=1,
-        help="episodes filmed at once, each in a process (default 1)",
+        help="episodes filmed at once, each in a process or a Ray task (default 1)",
+    )
+    p.add_argument(
+        "--backend",
+        type=one_of("backend", ("process", "ray")),
+        default="process",
+        metavar="process|ray",
+        help="process (worker processes on this machine, default) or ray",
+    )
+    p.add_argument(
+        "--ray-address",
+        help="with --backend ray: an existing Ray cluster (default: start one here)",
     )
     add_out_args(p, Path("runs/dataset"))
 
@@ -85,11 +103,7 @@ def cmd_record(args: argparse.Namespace) -> int:
 
     config = config_from_args(args)
     spec = spec_from_args(args, config)
-    cameras = (
-        ()
-        if args.cameras.strip() == "none"
-        else tuple(c.strip() for c in args.cameras.split(",") if c.strip())
-    )
+    cameras = () if args.cameras.strip() == "none" else _names(args.cameras)
     check_writable_dir(args.out)
     if spec.goals is not None:
         raise ConfigError("structure: list is not recorded yet; accepted the generated structures")
@@ -121,8 +135,10 @@ def cmd_record(args: argparse.Namespace) -> int:
             cameras=cameras,
             image_size=args.image_size,
             on_frame=on_frame,
-            randomize=tuple(r.strip() for r in args.randomize.split(",") if r.strip()),
+            randomize=_names(args.randomize),
             workers=args.workers,
+            backend=args.backend,
+            ray_address=args.ray_address,
             config=config,
             **sizes,
         )
@@ -137,3 +153,8 @@ def cmd_record(args: argparse.Namespace) -> int:
         f"frames{failed} -> {args.out}"
     )
     return 1 if recorded.failed else 0
+
+
+def _names(text: str) -> tuple[str, ...]:
+    """A comma-separated list's names."""
+    return tuple(name.strip() for name in text.split(",") if name.strip())

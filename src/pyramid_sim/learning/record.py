@@ -44,6 +44,8 @@ class RecordConfig:
     image_size: tuple[int, int] = (224, 224)
     randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
     workers: int = 1  # episodes filmed at once, each in a process of its own
+    backend: str = "process"  # or ray: the episodes as Ray tasks
+    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
 
     def __post_init__(self) -> None:
         if not 1 <= self.episodes <= 100_000:
@@ -61,6 +63,10 @@ class RecordConfig:
             )
         if not 1 <= self.workers <= 64:
             raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
+        if self.backend not in ("process", "ray"):
+            raise ConfigError(f"backend: unknown {self.backend!r}; accepted process, ray")
+        if self.ray_address is not None and self.backend != "ray":
+            raise ConfigError("ray address: only with --backend ray")
         if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
             raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
 

@@ -45,8 +45,8 @@ def film_staged(
 _WORKER_ENV: dict[str, Any] = {}
 
 
-def _work(config: Any, episode: int, out: Path) -> dict[str, Any]:
-    """A worker process's episode, its environment made once per process."""
+def film_in_worker(config: Any, episode: int, out: Path) -> dict[str, Any]:
+    """A worker process's episode (a pool's or Ray's), its environment made once per process."""
     from .env import BuildEnv
 
     if "env" not in _WORKER_ENV:
@@ -69,15 +69,24 @@ def staged(
     on_frame: OnFrame | None = None,
 ) -> Iterator[dict[str, Any]]:
     """The episodes filmed, yielded in episode order: here one after another, or on
-    `workers` processes (each frame's progress is then told only when its episode lands)."""
+    `workers` processes or Ray tasks (`config.backend`; each frame's progress is then told
+    only when its episode lands)."""
     todo = list(episodes)
+    if config.backend == "ray":
+        from .ray_staging import ray_staged
+
+        for result in ray_staged(config, todo, out, workers, config.ray_address):
+            if on_frame is not None:
+                on_frame(result["episode"], result["row"]["length"])
+            yield result
+        return
     if workers <= 1:
         for episode in todo:
             yield film_staged(config, env, episode, out, on_frame)
         return
     context = multiprocessing.get_context("spawn")  # no GL or MuJoCo state forked
     with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-        running = {pool.submit(_work, config, e, out): e for e in todo}
+        running = {pool.submit(film_in_worker, config, e, out): e for e in todo}
         done: dict[int, dict[str, Any]] = {}
         try:
             for episode in todo:

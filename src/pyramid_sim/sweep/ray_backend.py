@@ -72,15 +72,10 @@ def native_stderr_held(hold: bool) -> Iterator[None]:
                 sys.stderr.write(held.read().decode(errors="replace"))
 
 
-def run_ray(
-    specs: Iterable[SweepRun],
-    workers: int,
-    timeout: float,
-    on_result: OnResult,
-    address: str | None = None,
-) -> None:
-    """Run every spec as a Ray task, at most `workers` at once, on a local Ray instance (started
-    with `workers` CPUs) or the cluster at `address`; the nodes need pyramid_sim installed."""
+@contextlib.contextmanager
+def ray_session(address: str | None, workers: int) -> Iterator[Any]:
+    """The `ray` module, connected: to the cluster at `address`, or to a local instance started
+    here with `workers` CPUs (and shut down on leaving), or to the one already running."""
     import logging
 
     import ray
@@ -98,30 +93,46 @@ def run_ray(
                 )
         except ConnectionError as err:
             raise PyramidSimError(ray_connection_advice(address, err)) from None
-    task = ray.remote(num_cpus=1, max_retries=0)(run_one)
-    pending = deque(specs)
-    running: dict[Any, tuple[SweepRun, float]] = {}
     try:
-        while pending or running:
-            while pending and len(running) < workers:
-                spec = pending.popleft()
-                running[task.remote(spec)] = (spec, time.monotonic())
-            wait = min(start + timeout for _, start in running.values()) - time.monotonic()
-            ready, _ = ray.wait(list(running), num_returns=1, timeout=max(0.0, wait))
-            for ref in ready:
-                spec, start = running.pop(ref)
-                try:
-                    on_result(ray.get(ref))
-                except ray.exceptions.RayError as err:
-                    reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
-                    on_result(failed(spec, reason, time.monotonic() - start))
-            for ref, (spec, start) in list(running.items()):
-                if time.monotonic() - start > timeout:
-                    ray.cancel(ref, force=True)
-                    del running[ref]
-                    on_result(failed(spec, f"timeout: still running after {timeout:g} s", timeout))
+        yield ray
     finally:
-        for ref in running:
-            ray.cancel(ref, force=True)
         if started_here:
             ray.shutdown()
+
+
+def run_ray(
+    specs: Iterable[SweepRun],
+    workers: int,
+    timeout: float,
+    on_result: OnResult,
+    address: str | None = None,
+) -> None:
+    """Run every spec as a Ray task, at most `workers` at once, on a local Ray instance (started
+    with `workers` CPUs) or the cluster at `address`; the nodes need pyramid_sim installed."""
+    with ray_session(address, workers) as ray:
+        task = ray.remote(num_cpus=1, max_retries=0)(run_one)
+        pending = deque(specs)
+        running: dict[Any, tuple[SweepRun, float]] = {}
+        try:
+            while pending or running:
+                while pending and len(running) < workers:
+                    spec = pending.popleft()
+                    running[task.remote(spec)] = (spec, time.monotonic())
+                wait = min(start + timeout for _, start in running.values()) - time.monotonic()
+                ready, _ = ray.wait(list(running), num_returns=1, timeout=max(0.0, wait))
+                for ref in ready:
+                    spec, start = running.pop(ref)
+                    try:
+                        on_result(ray.get(ref))
+                    except ray.exceptions.RayError as err:
+                        reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
+                        on_result(failed(spec, reason, time.monotonic() - start))
+                for ref, (spec, start) in list(running.items()):
+                    if time.monotonic() - start > timeout:
+                        ray.cancel(ref, force=True)
+                        del running[ref]
+                        reason = f"timeout: still running after {timeout:g} s"
+                        on_result(failed(spec, reason, timeout))
+        finally:
+            for ref in running:
+                ray.cancel(ref, force=True)
