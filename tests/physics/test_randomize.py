@@ -65,6 +65,7 @@ def test_each_visual_part_changes_the_picture_and_nothing_the_physics_reads():
         changed = {
             "light": ("light_pos", "light_diffuse"),
             "colours": ("mat_rgba",),
+            "textures": ("tex_data",),
             "camera": ("cam_pos", "cam_quat"),
         }[part]
         for field in changed:
@@ -92,3 +93,36 @@ def test_the_expert_still_builds_under_every_part():
             break
     assert info["is_success"], info["failure"]
     env.close()
+
+
+def test_drawn_textures_are_the_compiled_models_and_the_films():
+    """Each surface's texture in the compiled model is the drawn pattern around its own tone
+    (every brick its own speckle of one look), and a renderer made for the episode draws it."""
+    from pyramid_sim.learning.textures import texture_pixels
+
+    env = _env(("textures",), cameras=("overview",), image_size=(48, 64))
+    _, info = env.reset(seed=7)
+    looks, m = info["randomization"]["textures"], env.loop.model
+    plain = _env(())
+    plain.reset(seed=7)
+    for name, key in (("floor", "floor"), ("table", "table"), ("brick00/surface", "brick")):
+        t = m.tex(name).id
+        h, w, c = m.tex_height[t], m.tex_width[t], m.tex_nchannel[t]
+        span = slice(m.tex_adr[t], m.tex_adr[t] + h * w * c)
+        before = plain.loop.model.tex_data[span].reshape(h, w, c)
+        look = looks[key]
+        want = texture_pixels(
+            look["pattern"],
+            look["cells"],
+            look["contrast"],
+            look["seed"] + t,
+            before.reshape(-1, c).mean(axis=0) / 255.0,
+            h,
+            w,
+        )
+        np.testing.assert_array_equal(m.tex_data[span].reshape(h, w, c), want)
+        assert np.ptp(want.astype(int)) > 0, name  # a pattern, not a flat colour
+    bricks = [m.tex_data[m.tex_adr[m.tex(f"brick0{i}/surface").id]] for i in range(2)]
+    assert looks["brick"]["pattern"] != "speckle" or bricks[0] != bricks[1]
+    env.close()
+    plain.close()

@@ -72,7 +72,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         default="",
         metavar="A,B,...",
         help="parts drawn per episode from its seed: all, or friction, brick_mass, "
-        "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
+        "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, textures, "
         "camera (default none)",
     )
     p.add_argument(

@@ -15,13 +15,15 @@ import numpy as np
 
 from ..config import SimConfig
 from ..errors import ConfigError
+from .textures import PATTERNS, texture_pixels
 
 PHYSICAL = ("friction", "brick_mass", "grip_force", "pad_friction", "spawn_jitter", "brick_size")
-VISUAL = ("light", "colours", "camera")
+VISUAL = ("light", "colours", "textures", "camera")
 PARTS = PHYSICAL + VISUAL
 STREAM = 0x5EED  # the draw's own random stream beside the seed's spawn jitter
 SCENE_CAMERAS = ("overview", "front", "top")
 COLOURED = ("floor", "wall", "table", "cabinet")  # materials whose colour is drawn, with bricks
+TEXTURED = ("floor", "wall", "table", "brick")  # textures drawn (every brick's its own speckle)
 
 
 def check_parts(parts: tuple[str, ...]) -> tuple[str, ...]:
@@ -62,6 +64,16 @@ def draw(seed: int, parts: tuple[str, ...]) -> dict[str, Any]:
                 "turn": [float(v) for v in rng.uniform(-3.0, 3.0, 3)],
             }
             for name in SCENE_CAMERAS
+        },
+        # drawn last: the parts above draw what they drew before textures existed
+        "textures": {
+            name: {
+                "pattern": PATTERNS[int(rng.integers(len(PATTERNS)))],
+                "cells": int(rng.integers(2, 13)),
+                "contrast": float(rng.uniform(0.05, 0.3)),
+                "seed": int(rng.integers(2**31)),
+            }
+            for name in TEXTURED
         },
     }
     for part in parts:
@@ -105,6 +117,8 @@ def visual(model: Any, data: Any, drawn: dict[str, Any]) -> None:
             key = "brick" if name.endswith("/brick") else name
             if key in drawn["colours"]:
                 model.mat_rgba[m, :3] = np.clip(model.mat_rgba[m, :3] * drawn["colours"][key], 0, 1)
+    if "textures" in drawn:
+        _draw_textures(model, drawn["textures"])
     if "camera" in drawn:
         for name, move in drawn["camera"].items():
             cam = model.camera(name).id
@@ -115,6 +129,25 @@ def visual(model: Any, data: Any, drawn: dict[str, Any]) -> None:
             mujoco.mju_mulQuat(quat, model.cam_quat[cam], turn)
             model.cam_quat[cam] = quat
     _place_world_frames(model, data)
+
+
+def _draw_textures(model: Any, textures: dict[str, dict[str, Any]]) -> None:
+    """Each drawn surface's texture pixels, around the texture's own mean tone, into the
+    model (a renderer made after this uploads them)."""
+    for t in range(model.ntex):
+        name = model.tex(t).name
+        key = "brick" if name.endswith("/surface") else name
+        if key not in textures:
+            continue
+        h, w, c = model.tex_height[t], model.tex_width[t], model.tex_nchannel[t]
+        adr = model.tex_adr[t]
+        pixels = model.tex_data[adr : adr + h * w * c].reshape(h, w, c)
+        base = pixels.reshape(-1, c).mean(axis=0) / 255.0
+        look = textures[key]
+        seed = look["seed"] + t  # every brick its own speckle of the one look
+        pixels[:] = texture_pixels(
+            look["pattern"], look["cells"], look["contrast"], seed, base, h, w
+        )
 
 
 def _place_world_frames(model: Any, data: Any) -> None:
