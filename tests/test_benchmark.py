@@ -33,6 +33,12 @@ KEYS = (
     "control_us_per_control_step",
     "control_budget_us",
     "ik_floor_us_per_control_step",
+    "breakdown_scheduling_us",
+    "breakdown_ik_us",
+    "breakdown_custody_us",
+    "breakdown_monitors_us",
+    "breakdown_physics_us",
+    "breakdown_other_us",
 )
 
 
@@ -73,6 +79,8 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert figures["ik_solves"] * 5 == figures["build_physics_steps"]  # 100 Hz IK, 500 Hz physics
     # The IK's floor is part of the control step it is measured against.
     assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
+    assert figures["ik_floor_us_per_control_step"] < figures["breakdown_ik_us"]
+    assert "| timed build: the IK, us/step |" in run.stdout
     # The seconds-a-brick targets are the 20-brick pyramid's: not judged on this 2-brick one.
     assert "| simulated s per brick | " in run.stdout and "| not this build |" in run.stdout
     assert "| build / bare |" in run.stdout and "| sweep scaling, 2 workers / 1 |" in run.stdout

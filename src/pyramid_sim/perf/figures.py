@@ -27,7 +27,7 @@ from ..robots import DEFAULT_ROBOT
 from ..sweep.backends import RunResult, run_processes
 from ..sweep.grid import SweepRun
 from .targets import BUILD_TO_REPLAY, structure_label
-from .timers import ik_floor_calls, timed_calls
+from .timers import ik_floor_calls, timed_calls, timed_parts
 
 Progress = Callable[[str], None]
 
@@ -143,24 +143,53 @@ def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any
     return figures, loop
 
 
+# The control step's parts, by what they do, and the loop's calls that make each up (their
+# calls do not call one another's); `other` is what is left of the control step: the
+# command's ramp across the substeps and the loop's own glue.
+CONTROL_PARTS = ("scheduling", "ik", "custody", "monitors")
+
+
+def _control_calls(loop: BuildLoop) -> dict[str, list[tuple[Any, str]]]:
+    return {
+        "scheduling": [(loop, "expert_targets"), (loop, "command")],
+        "ik": [(loop, "_solve_ik")],
+        "custody": [(loop.custody, "track")],
+        "monitors": [
+            (loop.monitor, "record"),
+            (loop.custody, "check_knocks"),
+            (loop.clearance, "update"),
+            (loop, "_stop_reason"),
+        ],
+        "physics": [(mujoco, "mj_step")],
+    }
+
+
 def control_step_figures(
     config: SimConfig, spec: StructureSpec, figures: dict[str, Any]
 ) -> dict[str, float]:
     """The control step's cost against what the build-to-replay target allows it (at 0.8, a
     quarter of the physics it drives), from the build's and the replay's rates; and, in a
     second build with timers round them, what the IK's unavoidable calls (`ik_floor_calls`)
-    cost of it."""
+    cost of it, and what each part of the control step costs (`CONTROL_PARTS`, the physics
+    as that build's timers saw it, and the rest)."""
     substeps = config.substeps
     physics_us = substeps * 1e6 / figures["replay_steps_per_s"]
     loop = BuildLoop.of(prepare(spec, config), config)
-    with timed_calls(ik_floor_calls()) as spent:
+    with timed_calls(ik_floor_calls()) as spent, timed_parts(_control_calls(loop)) as parts:
+        start = time.perf_counter()
         loop.run()
-    return {
+        wall = time.perf_counter() - start
+    per_step = 1e6 * substeps / loop.steps  # us per control step, from seconds in all
+    found = {
         "physics_us_per_control_step": physics_us,
         "control_us_per_control_step": substeps * 1e6 / figures["build_steps_per_s"] - physics_us,
         "control_budget_us": physics_us * (1 / BUILD_TO_REPLAY - 1),
-        "ik_floor_us_per_control_step": spent[0] * 1e6 * substeps / loop.steps,
+        "ik_floor_us_per_control_step": spent[0] * per_step,
     }
+    for part in (*CONTROL_PARTS, "physics"):
+        found[f"breakdown_{part}_us"] = parts[part] * per_step
+    found["breakdown_other_us"] = (wall - sum(parts.values())) * per_step
+    return found
 
 
 def video_figures(loop: BuildLoop, frames: int) -> dict[str, float]:
