@@ -57,7 +57,7 @@ class GripperConfig:
     force: float = default("gripper", "force")  # N, squeeze of each pad on the brick
     pad_friction: float = default("gripper", "pad_friction")
     close_time: float = 0.35  # s, the command ramp: a step slams the light fingers through
-    settle_time: float = 0.15  # s after the ramp, for the force to build
+    settle_time: float = 0.15  # s after a grip's ramp, for the force to build
     stiffness: float = 2000.0  # N/m of finger-gap error: stiff, so the force limit sets the squeeze
 
     def __post_init__(self) -> None:

@@ -101,7 +101,8 @@ class ArmRunner:
             ramp = min(1.0, max(0.0, self._t - wait) / grip.close_time)
             start = max(self._gap_from, self.squeeze_gap)
             self.gap = start + (self.open_gap - start) * ramp if ramp > 0 else self._gap_from
-            finished = self._t >= wait + grip.close_time + grip.settle_time
+            # Done once the fingers are open: no force has to build, unlike a grip's.
+            finished = self._t >= wait + grip.close_time
         if not finished:
             return None
         self.steps.pop(0)

@@ -28,6 +28,10 @@ from .scene import build_spec
 # mink gives the QP's terms (see ik_qp); daqp solves it, called directly: qpsolvers' generic
 # wrapper around it cost a sixth of a solve.
 VELOCITY_MARGIN = 0.9
+# The shoulder and elbow (an arm's first four joints) move the heavy links on lightly damped
+# servos, which ring past a command that rises at its acceleration bound: a wider margin there
+# (docs/performance.md).
+ARM_VELOCITY_MARGIN = 0.82
 # Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
 # for the whole error every 10 ms; against the acceleration bound that over-corrects and rings
 # (an arm reaching across to the far side rang +-20 mm over the spawn spot); 0.5 settles.
@@ -82,9 +86,9 @@ class DualArmIK:
         self.posture = mink.PostureTask(self.model, cost=cost, gain=FRAME_GAIN)
         # A margin under the real limits: the servos overshoot the IK's velocity a little.
         velocities = {
-            j: VELOCITY_MARGIN * v
+            j: (ARM_VELOCITY_MARGIN if i < 4 else VELOCITY_MARGIN) * v
             for arm in c.ARMS
-            for j, v in zip(arms[arm].joints, arms[arm].velocity_limits)
+            for i, (j, v) in enumerate(zip(arms[arm].joints, arms[arm].velocity_limits))
         }
         position_limit = mink.ConfigurationLimit(self.model)
         velocity_limit = mink.VelocityLimit(self.model, velocities)
