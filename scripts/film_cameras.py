@@ -4,13 +4,18 @@
     python3 scripts/film_cameras.py [--out docs/cameras]
 
 Writes panda_overview.png, panda_front.png, panda_top.png and baxter_overview.png (640x480),
-each from its own build (a build films one camera).
+each from its own build (a build films one camera); and each robot's wrist cameras as the
+environment films them, at the moment each hand first closes on a brick
+(<robot>_left_wrist.png, <robot>_right_wrist.png, 320x240).
 """
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
+
+import gymnasium
+import imageio.v3 as iio
 
 import pyramid_sim
 
@@ -33,6 +38,29 @@ def main() -> None:
             video_config=pyramid_sim.VideoConfig(camera=camera),
         )
         print(f"{path}: {result.bricks_placed}/{result.bricks_total} bricks in place")
+    for robot in ("panda", "baxter"):
+        film_wrists(robot, out)
+
+
+def film_wrists(robot: str, out: Path) -> None:
+    """Each wrist camera's view as its hand first grips, in the expert's rollout."""
+    cameras = ("left_wrist", "right_wrist")
+    env = gymnasium.make(
+        pyramid_sim.ENV_ID, structure="pyramid-even", layers=2, robot=robot, image_size=(240, 320)
+    ).unwrapped
+    env.reset(seed=0)
+    todo = {"left": cameras[0], "right": cameras[1]}
+    while todo:
+        *_, terminated, truncated, _ = env.step(env.expert_action())
+        for arm in list(todo):
+            step = env.loop.step_of(arm)
+            if step is not None and step.name == "grip":
+                path = out / f"{robot}_{todo.pop(arm)}.png"
+                iio.imwrite(path, env.images((f"{arm}_wrist",))[f"{arm}_wrist"])
+                print(f"{path}: the {arm} hand gripping")
+        if terminated or truncated:
+            break
+    env.close()
 
 
 if __name__ == "__main__":
