@@ -125,6 +125,27 @@ def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
     assert owner.inner is inner and owner.outer is outer
 
 
+def test_timed_parts_keep_a_clock_each_and_restore_what_they_wrap():
+    import time
+    from types import SimpleNamespace
+
+    from pyramid_sim.perf.timers import timed_parts
+
+    def slow() -> None:
+        time.sleep(0.03)
+
+    def quick() -> None:
+        time.sleep(0.01)
+
+    owner = SimpleNamespace(slow=slow, quick=quick)
+    with timed_parts({"slow": [(owner, "slow")], "quick": [(owner, "quick")]}) as spent:
+        owner.slow()
+        owner.quick()
+        owner.quick()
+    assert 0.03 <= spent["slow"] < 0.1 and 0.02 <= spent["quick"] < 0.08
+    assert owner.slow is slow and owner.quick is quick
+
+
 def test_a_build_size_target_is_judged_on_that_build_only():
     from pyramid_sim.perf.targets import DEFAULT_STRUCTURE, TARGETS
 

@@ -418,3 +418,22 @@ def test_a_sweep_row_reads_its_cells_typed(tmp_path):
     assert [r.broken for r in rows] == [False, True] and rows[0].failure_reason == ""
     assert rows[0].number("max_slip_mm") == 0.8 and math.isnan(rows[0].number("worst_error_xy_mm"))
     assert rows[1].key == tuple(rows[1][c] for c in COLUMNS[: len(rows[1].key)])
+
+
+def test_ray_not_installed_is_refused_before_anything_runs(monkeypatch):
+    """The one check of the backends: an unknown backend, an address without Ray, and Ray
+    asked for but not installed (the sweep's and the recorder's configs call it alike)."""
+    import importlib.util
+
+    from pyramid_sim.errors import MachineError
+    from pyramid_sim.sweep.grid import check_backend
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "ray" else real(name, *a)
+    )
+    with pytest.raises(MachineError, match="ray is not installed; accepted process"):
+        SweepConfig(backend="ray")
+    with pytest.raises(ConfigError, match="backend: unknown 'slurm'; accepted process, ray"):
+        check_backend("slurm", None)
+    check_backend("process", None)  # needs no Ray

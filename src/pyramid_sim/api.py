@@ -220,10 +220,6 @@ def record(
         backend,
         ray_address,
     )
-    if backend == "ray":
-        from .sweep.ray_backend import require_ray
-
-        require_ray()
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run
 

@@ -10,21 +10,25 @@ ArmChoice = Literal["both", "left", "right"]  # who builds: both arms (split) or
 Schedule = Literal["lockstep", "overlap"]
 RobotName = Literal["panda", "baxter"]
 Camera = Literal["overview", "front", "top"]
+Backend = Literal["process", "ray"]  # where a sweep's builds or a recording's episodes run
 
 ARMS: tuple[Arm, ...] = get_args(Arm)  # left first: the order of every per-arm array
 ARM_CHOICES: tuple[ArmChoice, ...] = get_args(ArmChoice)
 SCHEDULES: tuple[Schedule, ...] = get_args(Schedule)
 ROBOT_NAMES: tuple[RobotName, ...] = get_args(RobotName)
 CAMERAS: tuple[Camera, ...] = get_args(Camera)
+BACKENDS: tuple[Backend, ...] = get_args(Backend)
 
 __all__ = [
     "ARMS",
     "ARM_CHOICES",
+    "BACKENDS",
     "CAMERAS",
     "ROBOT_NAMES",
     "SCHEDULES",
     "Arm",
     "ArmChoice",
+    "Backend",
     "Camera",
     "RobotName",
     "Schedule",

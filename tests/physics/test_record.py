@@ -222,6 +222,18 @@ def test_episodes_filmed_in_parallel_make_the_serial_runs_dataset(dataset, tmp_p
     assert not (tmp_path / "p/.staging").exists()
 
 
+def test_a_recording_on_ray_without_ray_is_refused_writing_nothing(monkeypatch, tmp_path):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "ray" else real(name, *a)
+    )
+    with pytest.raises(pyramid_sim.MachineError, match="ray is not installed"):
+        _record(tmp_path / "d", 1, backend="ray")
+    assert not (tmp_path / "d").exists()
+
+
 def test_episodes_filmed_as_ray_tasks_make_the_serial_runs_dataset(dataset, tmp_path):
     """Ray tasks film the episodes on their nodes and ship the files back; the dataset is the
     one filmed here. The local Ray instance keeps its token under HOME and its session under

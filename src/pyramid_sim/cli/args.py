@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from ..choices import ARM_CHOICES, SCHEDULES
+from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES
 from ..config import SimConfig
 from ..core.structures import (
     MAX_BRICKS,
@@ -163,6 +163,21 @@ def add_physics_args(p: argparse.ArgumentParser) -> None:
         "[0, 10] (default 0)",
     )
     p.add_argument("--seed", type=whole("seed"), default=0, help="of the spawn jitter (default 0)")
+
+
+def add_backend_args(p: argparse.ArgumentParser, what: str) -> None:
+    """--backend and --ray-address: where the `what` (builds, episodes) run."""
+    p.add_argument(
+        "--backend",
+        type=one_of("backend", BACKENDS),
+        default="process",
+        metavar="|".join(BACKENDS),
+        help=f"process (the {what} in worker processes on this machine, default) or ray",
+    )
+    p.add_argument(
+        "--ray-address",
+        help="with --backend ray: an existing Ray cluster (default: start one here)",
+    )
 
 
 def add_out_args(p: argparse.ArgumentParser, default: Path) -> None:

@@ -159,10 +159,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out, as such a point measures nothing."""
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
-    if config.backend == "ray":
-        from ..sweep.ray_backend import require_ray
-
-        require_ray()
     from ..physics.reach import prepare
     from ..sweep.run import report, run_sweep
 

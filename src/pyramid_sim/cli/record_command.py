@@ -10,11 +10,11 @@ from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from .args import (
+    add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
-    one_of,
     whole,
 )
 from .progress import Progress
@@ -81,17 +81,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         default=1,
         help="episodes filmed at once, each in a process or a Ray task (default 1)",
     )
-    p.add_argument(
-        "--backend",
-        type=one_of("backend", ("process", "ray")),
-        default="process",
-        metavar="process|ray",
-        help="process (worker processes on this machine, default) or ray",
-    )
-    p.add_argument(
-        "--ray-address",
-        help="with --backend ray: an existing Ray cluster (default: start one here)",
-    )
+    add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
 

@@ -11,11 +11,11 @@ from ..config import SimConfig
 from ..params import PARAMS
 from ..sweep.grid import SweepConfig, parse_axis
 from .args import (
+    add_backend_args,
     add_out_args,
     add_schedule_arg,
     add_structure_args,
     number,
-    one_of,
     spec_from_args,
     whole,
 )
@@ -64,17 +64,7 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
         default=900.0,
         help="seconds a run may take before it is stopped and failed (default 900)",
     )
-    p.add_argument(
-        "--backend",
-        type=one_of("backend", ("process", "ray")),
-        default="process",
-        metavar="process|ray",
-        help="process (worker processes on this machine, default) or ray",
-    )
-    p.add_argument(
-        "--ray-address",
-        help="with --backend ray: an existing Ray cluster (default: start one here)",
-    )
+    add_backend_args(p, "builds")
     add_out_args(p, Path("runs/sweep"))
 
 

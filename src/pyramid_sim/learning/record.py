@@ -18,6 +18,7 @@ from typing import Any
 from ..errors import ConfigError
 from ..output.files import write_atomic
 from ..output.video import signals_held
+from ..sweep.grid import check_backend
 from ..version import __version__
 from . import lerobot_format as fmt
 from .env import BuildEnv
@@ -63,10 +64,7 @@ class RecordConfig:
             )
         if not 1 <= self.workers <= 64:
             raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
-        if self.backend not in ("process", "ray"):
-            raise ConfigError(f"backend: unknown {self.backend!r}; accepted process, ray")
-        if self.ray_address is not None and self.backend != "ray":
-            raise ConfigError("ray address: only with --backend ray")
+        check_backend(self.backend, self.ray_address)
         if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
             raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from ..choices import ARM_CHOICES, SCHEDULES, ArmChoice, RobotName, Schedule
+from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES, ArmChoice, RobotName, Schedule
 from ..config import SimConfig
 from ..core.structures import StructureSpec
-from ..errors import ConfigError
+from ..errors import ConfigError, MachineError
 from ..params import PARAMS, check_range, param
 from ..robots import DEFAULT_ROBOT
 
@@ -106,6 +106,28 @@ class SweepRun:
         )
 
 
+def check_backend(backend: str, ray_address: str | None) -> None:
+    """ConfigError for an unknown backend, or a Ray address without Ray; MachineError for Ray
+    when it is not installed (a sweep's builds and a recording's episodes run on the same
+    backends), before anything runs."""
+    if backend not in BACKENDS:
+        raise ConfigError(f"backend: unknown {backend!r}; accepted {', '.join(BACKENDS)}")
+    if ray_address is not None and backend != "ray":
+        raise ConfigError("ray address: only with --backend ray")
+    if backend == "ray":
+        require_ray()
+
+
+def require_ray() -> None:
+    """MachineError, before anything runs, when the ray extra is not installed."""
+    import importlib.util
+
+    if importlib.util.find_spec("ray") is None:
+        raise MachineError(
+            "backend: ray is not installed; accepted process, or ray after pip install -e '.[ray]'"
+        )
+
+
 @dataclass(frozen=True)
 class SweepConfig:
     """A whole sweep: the grid, the build, the repeats and how the runs are executed."""
@@ -130,10 +152,7 @@ class SweepConfig:
         check_range("workers", self.workers, 1, 256)
         check_range("timeout (s)", self.timeout, 0.0, 86400.0, low_open=True)
         replace(SimConfig().layout, spawn_jitter_mm=self.spawn_jitter_mm)  # range check
-        if self.backend not in ("process", "ray"):
-            raise ConfigError(f"backend: unknown {self.backend!r}; accepted process, ray")
-        if self.ray_address is not None and self.backend != "ray":
-            raise ConfigError("ray address: only with --backend ray")
+        check_backend(self.backend, self.ray_address)
         names = [a.name for a in self.axes]
         if len(set(names)) != len(names):
             raise ConfigError(f"axes: a parameter is given twice ({', '.join(names)})")

@@ -12,19 +12,9 @@ from collections import deque
 from collections.abc import Iterable, Iterator
 from typing import Any
 
-from ..errors import MachineError, PyramidSimError
+from ..errors import PyramidSimError
 from .backends import OnResult, failed, run_one
 from .grid import SweepRun
-
-
-def require_ray() -> None:
-    """MachineError, before anything runs, when the ray extra is not installed."""
-    import importlib.util
-
-    if importlib.util.find_spec("ray") is None:
-        raise MachineError(
-            "backend: ray is not installed; accepted process, or ray after pip install -e '.[ray]'"
-        )
 
 
 def ray_connection_advice(address: str | None, err: Exception) -> str:
