@@ -110,6 +110,7 @@ def measured_on_target(plan, **changes):
         closest_arm_m=0.1,
         closest_arm_time=1.0,
         physics_steps=6000,
+        ik_solves=1000,
     )
     return replace(clean, **changes)
 

@@ -120,3 +120,14 @@ def test_a_slow_motion_the_loop_cannot_film_is_refused(refused):
         ]
     )
     assert line.strip() == f"pyramid-sim: error: {err.value}"
+
+
+@pytest.mark.parametrize("interval", [0, 5, 2.5, True])
+def test_the_free_ik_interval_is_a_whole_number_of_control_steps(interval):
+    from pyramid_sim.config import MotionConfig
+
+    with pytest.raises(pyramid_sim.ConfigError) as err:
+        MotionConfig(free_ik_interval=interval)
+    assert str(err.value) == (
+        f"free IK interval: {interval!r} is out of range; accepted 1 to 4, whole numbers"
+    )

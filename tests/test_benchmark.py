@@ -76,7 +76,12 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert figures["build_success"] and figures["bricks_placed"] == 2
     assert figures["sweep_successes_1"] == 1 and figures["sweep_successes_2"] == 2
     assert figures["replay_matches_build"] is True
-    assert figures["ik_solves"] * 5 == figures["build_physics_steps"]  # 100 Hz IK, 500 Hz physics
+    # 100 Hz control, 500 Hz physics; in free motion one IK solve covers several control steps
+    control_steps = figures["build_physics_steps"] / 5
+    assert 0 < figures["ik_solves"] < control_steps
+    assert figures["ik_solves_per_control_step"] == pytest.approx(
+        figures["ik_solves"] / control_steps
+    )
     # The IK's floor is part of the control step it is measured against.
     assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
     assert figures["ik_floor_us_per_control_step"] < figures["breakdown_ik_us"]

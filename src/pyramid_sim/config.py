@@ -102,6 +102,7 @@ class MotionConfig:
     settle_before_release: float = 0.15  # s held still at the release pose
     position_tolerance: float = 0.002  # m, IK target reached
     arm_min_distance: float = 0.05  # m the IK keeps between the arms' links (beyond the lockstep)
+    free_ik_interval: int = 3  # control steps per IK solve in free motion (1: every step, up to 4)
 
     def __post_init__(self) -> None:
         check_range("hover distance", self.hover, 0.02, 0.3)
@@ -112,6 +113,7 @@ class MotionConfig:
         check_range("control dt", self.control_dt, 0.002, 0.05)
         check_range("settle before release", self.settle_before_release, 0.0, 2.0)
         check_range("arm min distance", self.arm_min_distance, 0.0, 0.3)
+        check_count("free IK interval", self.free_ik_interval, 1, 4)
 
 
 @dataclass(frozen=True)

@@ -126,3 +126,64 @@ def test_carried_gaps_never_rule_out_a_pair_within_reach():
                 assert gaps.may_be_within(data, distance)
             calls += 1
     assert gaps.measured < calls * gaps.g1.size / 4
+
+
+def test_over_a_span_the_objective_is_minks_and_the_plan_keeps_the_limits():
+    """A solve for four control steps: mink's objective at the span's task gains, and a plan
+    whose joints move within the velocity bounds and change speed within the acceleration
+    bounds at every control step, ending where the IK's configuration stands."""
+    rng = np.random.default_rng(7)
+    ik = _ik_at(rng)
+    ik._set_span(4)
+    qp = mink.build_ik(ik.configuration, ik.task_list, 4 * ik.dt, ik.damping, ik.limits[:2])
+    H, c_ = ik.problem.objective()
+    np.testing.assert_allclose(H, qp.P, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(c_, qp.q, rtol=1e-12, atol=1e-12)
+    ik._set_span(1)
+    assert ik.tasks["left"].gain == pytest.approx(0.5)
+
+    ik = DualArmIK(SimConfig())  # from home, the hands sent apart and far: fast moves
+    for arm, y in (("left", 0.55), ("right", -0.55)):
+        ik.set_target(arm, Pose(0.25, y, 0.45, 1.0))
+    dofs, v_max = ik.problem._velocity_dofs, ik.problem._velocity_max
+    a_max = ik._max_ddq[dofs] / ik.dt**2
+    q, v = [ik.q.copy()], [np.zeros(ik.model.nv)]
+    plans = 0
+    while len(q) < 250:  # as the loop steps: a span where granted, else one step
+        if ik.may_span(4) and ik.step(4):
+            plans += 1
+        else:
+            ik.step(1)
+        while True:
+            q.append(ik.q.copy())
+            v.append((q[-1] - q[-2]) / ik.dt)
+            if not ik.coast():
+                break
+        np.testing.assert_array_equal(ik.q, ik.configuration.q)
+    speeds, changes = np.abs(np.array(v)[:, dofs]), np.abs(np.diff(np.array(v)[:, dofs], axis=0))
+    assert plans > 30
+    assert np.any(speeds.max(axis=0) >= 0.98 * v_max)  # some did run at the bound
+    assert np.all(speeds <= v_max * (1 + 1e-9))
+    assert np.all(changes <= a_max * ik.dt * (1 + 1e-9))
+
+
+def test_a_span_is_refused_near_the_other_arm_and_nothing_moves():
+    """Both hands sent to one point: once a pair is within the collision limit's reach, a
+    span is refused (by `may_span` at the present speed, and by `step` itself) and a refusal
+    leaves the IK where it was."""
+    ik = DualArmIK(SimConfig())
+    limit = ik.limits[-1]
+    for arm in c.ARMS:
+        ik.set_target(arm, Pose(0.5, 0.0, 0.3, 0.0))
+    for _ in range(300):
+        ik.step()
+        if limit.active_rows(ik.configuration, ik.dt)[1].size:
+            break
+    else:
+        pytest.fail("the arms never came within the collision limit's reach")
+    q, velocity = ik.configuration.q.copy(), ik.velocity.copy()
+    assert not ik.may_span(4)
+    assert not ik.step(4)
+    np.testing.assert_array_equal(ik.configuration.q, q)
+    np.testing.assert_array_equal(ik.velocity, velocity)
+    assert not ik.planned

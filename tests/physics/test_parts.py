@@ -75,7 +75,7 @@ def test_dispatch_alone_hands_the_first_picks_out_by_the_schedule(scene):
     assert all(t is not None for t in first.values())
     busy = [a for a in c.ARMS if dispatch.step_of(a) is not None]
     assert busy  # at least one arm has its first step, the seed's hover
-    pose = dispatch.advance(busy[0], 0.0, lambda *done: None)
+    pose = dispatch.advance(busy[0], lambda: 0.0, lambda *done: None)
     assert np.isfinite([pose.x, pose.y, pose.z]).all()
 
 
@@ -111,7 +111,7 @@ def test_a_stall_reason_alone_names_what_the_arms_wait_for():
 
 def test_the_readout_alone_reports_the_state_it_is_given():
     parts = make_parts(PLAN, replace(CONFIG, seed=4))
-    got = measurements(parts, physics_steps=0, failure="stopped by hand", wall=0.5)
+    got = measurements(parts, physics_steps=0, ik_solves=0, failure="stopped by hand", wall=0.5)
     assert got.failure == "stopped by hand" and got.physics_steps == 0 and got.sim_time == 0.0
     assert got.final_pos.shape == (BRICKS, 3)
     assert np.allclose(got.final_pos[2], park_position(2))  # nothing has moved

@@ -6,6 +6,7 @@ finger-gap command per tick, and says when the current step and the whole list a
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ..choices import Arm
@@ -76,8 +77,20 @@ class ArmRunner:
                 self.pose, step.pose, step.speed, motion.turn_rate, step.transit
             )
 
-    def tick(self, dt: float, ik_error: float) -> Step | None:
-        """Advance by dt; returns the step that finished on this tick, if any."""
+    def time_left(self) -> float:
+        """Seconds until the current move's path ends (0 for a gripper step or none)."""
+        return 0.0 if self._segment is None else max(0.0, self._segment.duration - self._t)
+
+    def pose_ahead(self, seconds: float) -> Pose:
+        """The commanded pose `seconds` later along the current move, if it has begun (a step
+        not yet begun may be held back: the pose now)."""
+        if self._segment is None or seconds == 0.0 or not self.started:
+            return self.pose
+        return self._segment.at(self._t + seconds)
+
+    def tick(self, dt: float, ik_error: Callable[[], float]) -> Step | None:
+        """Advance by dt; returns the step that finished on this tick, if any. `ik_error`
+        gives the IK's position error, asked only once a move's path has run its course."""
         step = self.current
         if step is None:
             return None
@@ -88,7 +101,7 @@ class ArmRunner:
             self.pose = self._segment.at(self._t)
             finished = (
                 self._t >= self._segment.duration
-                and ik_error <= self.config.motion.position_tolerance
+                and ik_error() <= self.config.motion.position_tolerance
             )
         elif step.kind is StepKind.GRIP:
             ramp = self._t / grip.close_time

@@ -41,6 +41,7 @@ class Measurements:
     closest_arm_m: float
     closest_arm_time: float | None
     physics_steps: int
+    ik_solves: int  # control steps on which the IK solved (in free motion one covers several)
 
     @property
     def dropped(self) -> set[int]:

@@ -256,6 +256,7 @@ def judge(measured: Measurements, config: SimConfig, tol: Tolerances = Tolerance
         contact_friction={k: round(v, 6) for k, v in measured.contact_friction.items()},
         mujoco_warnings=dict(measured.warnings),
         physics_steps=measured.physics_steps,
+        ik_solves=measured.ik_solves,
         inputs=inputs_of(measured.plan, config),
         versions=versions(),
     )

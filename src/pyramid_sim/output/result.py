@@ -138,6 +138,7 @@ class BuildResult:
     contact_friction: dict[str, float]  # brick_brick, brick_table, pad_brick, from the model
     mujoco_warnings: dict[str, int]
     physics_steps: int
+    ik_solves: int  # control steps that solved the IK; the rest followed a solve's plan
     inputs: BuildInputs
     versions: dict[str, str]
     video: VideoInfo | None = None

@@ -131,6 +131,7 @@ def build_figures(config: SimConfig, spec: StructureSpec) -> tuple[dict[str, Any
         "replay_steps_per_s": replay_rate,
         "replay_matches_build": bool(np.array_equal(replay_qpos, loop.data.qpos)),
         "ik_solves": len(ms),
+        "ik_solves_per_control_step": measured.ik_solves * config.substeps / measured.physics_steps,
         "ik_solve_ms_median": float(np.median(ms)),
         "ik_solve_ms_p99": float(np.percentile(ms, 99)),
         "sim_s_per_brick": result.sim_s_per_brick,

@@ -169,7 +169,10 @@ class ArmDispatch:
         return clear_pose(arm, self.robot).yaw
 
     def advance(
-        self, arm: Arm, ik_error: float, on_done: Callable[[Arm, Step, Task | None], None]
+        self,
+        arm: Arm,
+        ik_error: Callable[[], float],
+        on_done: Callable[[Arm, Step, Task | None], None],
     ) -> Pose:
         """One control tick of the arm (unless held); `on_done` hears a finished step before
         the scheduler hears of a finished task. Returns the pose the arm is commanded to."""

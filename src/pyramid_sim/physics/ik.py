@@ -7,49 +7,27 @@ are shared with the full scene, so the solution maps over by name.
 from __future__ import annotations
 
 import math
-from ctypes import c_int
-from functools import lru_cache
 
-import daqp
 import mink
-import mujoco
 import numpy as np
 
-from ..choices import Arm, RobotName
+from ..choices import Arm
 from ..config import SimConfig
 from ..core.poses import Pose, tcp_quaternion, yaw_of
 from ..errors import UnreachableError
 from . import names as c
-from .clearance import arm_geoms, colliding_geoms
-from .handles import dof_addresses, qpos_addresses
-from .ik_qp import NO_BOUND, BrakingCollisionLimit, IKProblem
-from .scene import build_spec
-
-# mink gives the QP's terms (see ik_qp); daqp solves it, called directly: qpsolvers' generic
-# wrapper around it cost a sixth of a solve.
-VELOCITY_MARGIN = 0.9
-# The shoulder and elbow (an arm's first four joints) move the heavy links on lightly damped
-# servos, which ring past a command that rises at its acceleration bound: a wider margin there
-# (docs/performance.md).
-ARM_VELOCITY_MARGIN = 0.82
-# Share of the frame error the QP removes in one step. At 1 (mink's default) the solution asks
-# for the whole error every 10 ms; against the acceleration bound that over-corrects and rings
-# (an arm reaching across to the far side rang +-20 mm over the spawn spot); 0.5 settles.
-FRAME_GAIN = 0.5
-
-
-def arms_model(config: SimConfig) -> mujoco.MjModel:
-    """The scene without bricks, for the IK: compiled once per robot and timestep in a process
-    (the arms' kinematics do not change with the brick or grip settings a sweep varies)."""
-    return _arms_model(config.robot, config.timestep)
-
-
-@lru_cache(maxsize=4)
-def _arms_model(robot: RobotName, timestep: float) -> mujoco.MjModel:
-    spec = build_spec(SimConfig(robot=robot, timestep=timestep), 0, with_bricks=False)
-    for geom in [g for g in spec.geoms if not (g.contype or g.conaffinity)]:
-        spec.delete(geom)  # drawn only: the IK never looks at them, its kinematics skip them
-    return spec.compile()
+from .handles import qpos_addresses
+from .ik_plan import SpanPlan, ramp_split, span_gain
+from .ik_qp import BrakingCollisionLimit, IKProblem, solve_smooth, solver_scratch
+from .ik_terms import (
+    FRAME_GAIN,
+    arms_model,
+    frame_task,
+    guarded_pairs,
+    joint_ranges,
+    velocity_bounds,
+    velocity_change,
+)
 
 
 class DualArmIK:
@@ -70,69 +48,32 @@ class DualArmIK:
         self.configuration = mink.Configuration(self.model)
         self.dt = config.motion.control_dt
         self.qadr = {arm: qpos_addresses(self.model, arms[arm].joints) for arm in c.ARMS}
-        self.tasks = {
-            arm: mink.FrameTask(
-                frame_name=arms[arm].tcp_site,
-                frame_type="site",
-                position_cost=1.0,
-                orientation_cost=1.0,
-                lm_damping=1e-3,
-                gain=FRAME_GAIN,
-            )
-            for arm in c.ARMS
-        }
+        self.tasks = {arm: frame_task(arms[arm].tcp_site) for arm in c.ARMS}
         # The same gain, so frame and posture tasks balance where they did at gain 1.
         cost = robot.posture_cost if posture_cost is None else posture_cost
         self.posture = mink.PostureTask(self.model, cost=cost, gain=FRAME_GAIN)
-        # A margin under the real limits: the servos overshoot the IK's velocity a little.
-        velocities = {
-            j: (ARM_VELOCITY_MARGIN if i < 4 else VELOCITY_MARGIN) * v
-            for arm in c.ARMS
-            for i, (j, v) in enumerate(zip(arms[arm].joints, arms[arm].velocity_limits))
-        }
         position_limit = mink.ConfigurationLimit(self.model)
-        velocity_limit = mink.VelocityLimit(self.model, velocities)
+        velocity_limit = velocity_bounds(self.model, robot)
         # Collision safety beyond the scheduler: the QP will not close the gap between the
         # arms' links below the minimum distance, whatever the targets ask.
         self._collision = BrakingCollisionLimit(
-            self.model, self._guarded_pairs(), config.motion.arm_min_distance
+            self.model, guarded_pairs(self.model, robot), config.motion.arm_min_distance
         )
         self.limits = [position_limit, velocity_limit, self._collision]  # as mink takes them
         # The most a step's dq may change from one step to the next.
-        self._max_ddq = self._velocity_change(limit_acceleration) * self.dt
-        rows = self._collision.limit.max_num_contacts
-        self._free = np.full(rows, -NO_BOUND)  # the collision rows' lower bounds
-        self._sense = np.zeros(self.model.nv + rows, dtype=c_int)
+        limited = robot if limit_acceleration else None
+        self._max_ddq = velocity_change(self.model, limited, self.dt) * self.dt
+        self._scratch = solver_scratch(self._collision.limit.max_num_contacts, self.model.nv)
         self.task_list = [*self.tasks.values(), self.posture]
         self.problem = IKProblem(
             self.configuration, self.task_list, damping, position_limit, velocity_limit, self.dt
         )
         self._targets: dict[str, Pose] = {}
         self.velocity = np.zeros(self.model.nv)
-        joint_ids = [self.model.joint(j).id for a in c.ARMS for j in arms[a].joints]
-        self.limited_q = self.model.jnt_qposadr[joint_ids]
-        self.q_low, self.q_high = self.model.jnt_range[joint_ids].T
+        self._span = 1  # the span the task gains are set for
+        self._plan: SpanPlan | None = None  # the last solve's, while it covers several steps
+        self.limited_q, self.q_low, self.q_high = joint_ranges(self.model, robot)
         self.reset_home()
-
-    def _velocity_change(self, limited: bool) -> np.ndarray:
-        """The most each dof's velocity may change in one step: its acceleration limit times
-        dt (unbounded for the fingers, or everywhere if not `limited`)."""
-        max_dv = np.full(self.model.nv, np.inf)
-        for arm in c.ARMS if limited else ():
-            dofs = dof_addresses(self.model, self.robot.arms[arm].joints)
-            max_dv[dofs] = np.array(self.robot.arms[arm].acceleration_limits) * self.dt
-        return max_dv
-
-    def _guarded_pairs(self) -> list[tuple[list[int], list[int]]]:
-        """The geom groups the IK keeps apart: the arms' guarded links from each other, and
-        from the robot's own body (torso, head) if it has one."""
-        arms, model = self.robot.arms, self.model
-        guarded = [arm_geoms(model, arms[arm], arms[arm].guarded_bodies) for arm in c.ARMS]
-        pairs = [(guarded[0], guarded[1])]
-        if self.robot.static_bodies:
-            body = colliding_geoms(model, {model.body(b).id for b in self.robot.static_bodies})
-            pairs += [(arm, body) for arm in guarded]
-        return pairs
 
     def home(self, arm: Arm) -> np.ndarray:
         return np.array(self.robot.arms[arm].home)
@@ -152,6 +93,7 @@ class DualArmIK:
         q[self.qadr["right"]] = right_q
         self.configuration.update(q)
         self.velocity = np.zeros(self.model.nv)
+        self._plan = None
         for arm in c.ARMS:
             self.tasks[arm].set_target(
                 self.configuration.get_transform_frame_to_world(
@@ -178,53 +120,94 @@ class DualArmIK:
         wxyz_xyz = np.array([*tcp_quaternion(pose.yaw), pose.x, pose.y, pose.z])
         self.tasks[arm].set_target(mink.SE3(wxyz_xyz))
 
-    def step(self) -> None:
-        """One control step: solve for joint velocities and integrate them over dt.
+    @property
+    def q(self) -> np.ndarray:
+        """The joint positions commanded for this control step."""
+        return self.configuration.q if self._plan is None else self._plan.q
 
-        The change of velocity stays within the arm's acceleration limits (see `solve_velocity`): a
-        sudden reversal (near the shoulder singularity) would shake the brick loose.
-        """
-        velocity = self.solve_velocity()
-        q_next = self.configuration.integrate(velocity, self.dt)
+    def step(self, span: int = 1) -> bool:
+        """One solve for the next `span` control steps: joint velocities from the QP over
+        span x dt, and the joint positions they lead to at each of those steps (`q`, then
+        `coast()` to the next). A span of several steps is refused (False, nothing moved)
+        unless the arms surely stay beyond the collision limit's reach throughout: the
+        targets were for its end, so the caller aims again and steps once.
+
+        Each control step's change of velocity stays within the arm's acceleration limits
+        (`solve_velocity`, ik_plan): a sudden reversal (near the shoulder singularity) would
+        shake the brick loose."""
+        if self._plan is not None:
+            self._cut_plan(self._plan)
+        velocity = self.solve_velocity(span)
+        if span > 1 and not self._stays_clear(span, velocity):
+            return False  # near once the new speed is in
+        if span == 1:
+            q_next = self.configuration.integrate(velocity, self.dt)
+        else:
+            ranges = (self.limited_q, self.q_low, self.q_high)
+            q0 = self.configuration.q
+            self._plan = SpanPlan(q0, self.velocity, velocity, self.dt, span, ranges)
+            q_next = self._plan.rows[-1]
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
         q_next[self.limited_q] = np.clip(q_next[self.limited_q], self.q_low, self.q_high)
         self.velocity = velocity
         self.configuration.update(q_next)
+        return True
 
-    def solve_velocity(self) -> np.ndarray:
-        """Joint velocities from the QP of mink's tasks and limits (`IKProblem`).
+    def _cut_plan(self, plan: SpanPlan) -> None:
+        """Leave the plan where it has got to (the configuration stood at its end)."""
+        if not plan.done:
+            self.configuration.update(plan.q)
+            self.velocity = plan.velocities[plan.row].copy()
+        self._plan = None
 
-        Each joint's change of velocity is bounded by its acceleration limit inside the QP, so
-        a stop short of the other arm is planned within what the arm can do. When that makes
-        the QP infeasible (an approach too fast to brake in time, or braking at a joint limit)
-        it is solved without the bounds and its answer clipped to them, unless the clipped
-        answer would close on the other arm: then the collision limit wins over smoothness.
-        NoSolutionFound if the QP has no solution even so."""
+    @property
+    def planned(self) -> bool:
+        """Whether the last step covered several control steps (`coast` goes on along it)."""
+        return self._plan is not None
+
+    def coast(self) -> bool:
+        """Move on to the next control step of the last `step(span)`'s plan, without solving;
+        False (and nothing done) once the plan is used up."""
+        return self._plan is not None and self._plan.advance()
+
+    def may_span(self, span: int) -> bool:
+        """Whether a step over `span` control steps may be granted: not if the arms could
+        come within the collision limit's reach even at their present speed (`step` also
+        checks the speed it solves for)."""
+        return self._stays_clear(span, self.velocity)
+
+    def _stays_clear(self, span: int, velocity: np.ndarray) -> bool:
+        """Whether a span towards `velocity` keeps the arms out of the collision limit's reach
+        (a joint moves at most the larger of its last and new speed for the span)."""
+        motion = np.maximum(np.abs(self.velocity), np.abs(velocity)) * (span * self.dt)
+        return self._collision.stays_clear(self.configuration.data, motion)
+
+    def _set_span(self, span: int) -> None:
+        """The tasks' gains for a step over `span` control steps (`span_gain`)."""
+        if span != self._span:
+            self._span = span
+            for task in self.task_list:
+                task.gain = span_gain(FRAME_GAIN, span)
+
+    def solve_velocity(self, span: int = 1) -> np.ndarray:
+        """Joint velocities from the QP of mink's tasks and limits (`IKProblem`), each
+        joint's change of velocity within its acceleration limit (`solve_smooth`).
+        NoSolutionFound if the QP has no solution. Over a `span` of control steps the QP's
+        step is the span's whole motion, the velocity ramping to the new one (ik_plan)."""
+        self._set_span(span)
         H, c = self.problem.objective()
-        low, high = self.problem.bounds()
-        G, h = self._collision.active_rows(self.configuration, self.dt)
-        free, sense = self._free[: h.size], self._sense[: h.size + low.size]
-        last = self.velocity * self.dt
-        accel_low, accel_high = last - self._max_ddq, last + self._max_ddq
-        step, _, exitflag, _ = daqp.solve(
-            H,
-            c,
-            G,
-            np.concatenate([np.minimum(high, accel_high), h]),
-            np.concatenate([np.maximum(low, accel_low), free]),
-            sense,
-        )
-        if exitflag > 0:
-            return step / self.dt
-        step, _, exitflag, _ = daqp.solve(
-            H, c, G, np.concatenate([high, h]), np.concatenate([low, free]), sense
-        )
-        if exitflag <= 0:
-            raise mink.NoSolutionFound("daqp")
-        clipped = np.clip(step, accel_low, accel_high)
-        if np.all(G @ clipped <= h + 1e-9):
-            return clipped / self.dt
-        return step / self.dt
+        seconds = self.dt * span
+        drift: float | np.ndarray = 0.0
+        late, box = self.dt, self.problem.bounds()  # at one step, no ramp
+        if span > 1:
+            early, late = ramp_split(self.dt, span)
+            drift = early * self.velocity
+            box = self.problem.bounds(late, drift)
+        G, h = self._collision.active_rows(self.configuration, seconds)
+        last = self.velocity * seconds  # dq if v stayed v0
+        change = self._max_ddq * (span * late / self.dt)  # late x (acceleration x seconds)
+        step = solve_smooth(H, c, box, (G, h), (last - change, last + change), self._scratch)
+        return (step - drift) / late
 
     def error(self, arm: Arm) -> tuple[float, float]:
         """Position (m) and orientation (rad) error of the arm's frame task."""

@@ -12,7 +12,9 @@ QP has the same terms as mink's (tests/physics/test_ik_qp.py holds each to `mink
 from __future__ import annotations
 
 from collections.abc import Sequence
+from ctypes import c_int
 
+import daqp
 import mink
 import mujoco
 import numpy as np
@@ -49,11 +51,15 @@ class IKProblem:
         self._H0.flat[:: nv + 1] += damping
         self._position = position_limit
         # mink bounds each listed dof: -dt v_max <= dq <= dt v_max.
-        self._velocity_low = np.full(nv, -NO_BOUND)
-        self._velocity_high = np.full(nv, NO_BOUND)
+        self.dt = dt
+        self._velocity_dofs = np.zeros(0, dtype=int)
+        self._velocity_max = np.zeros(0)
         if velocity_limit.projection_matrix is not None:
-            self._velocity_high[velocity_limit.indices] = dt * velocity_limit.limit
-            self._velocity_low[velocity_limit.indices] = -dt * velocity_limit.limit
+            self._velocity_dofs = np.asarray(velocity_limit.indices)
+            self._velocity_max = np.asarray(velocity_limit.limit, dtype=float)
+        self._low, self._high = np.full(nv, -NO_BOUND), np.full(nv, NO_BOUND)
+        self._high[self._velocity_dofs] = dt * self._velocity_max
+        self._low[self._velocity_dofs] = -dt * self._velocity_max
         self._to_upper = np.empty(nv)
         self._from_lower = np.empty(nv)
 
@@ -77,10 +83,21 @@ class IKProblem:
         H.flat[:: self.nv + 1] += mu
         return H, c
 
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def bounds(
+        self, dt: float | None = None, offset: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(low, high) on dq from the position limit (its gain times the way left to each end)
-        and the velocity limit; unbounded dofs get +-NO_BOUND."""
-        low, high = self._velocity_low.copy(), self._velocity_high.copy()
+        and the velocity limit (dq = offset + v dt within +-v_max, `dt` the problem's own and
+        no offset if None); unbounded dofs get +-NO_BOUND."""
+        if dt is None and offset is None:
+            low, high = self._low.copy(), self._high.copy()
+        else:
+            low, high = np.full(self.nv, -NO_BOUND), np.full(self.nv, NO_BOUND)
+            dofs = self._velocity_dofs
+            step = (self.dt if dt is None else dt) * self._velocity_max
+            centre = 0.0 if offset is None else offset[dofs]
+            high[dofs] = centre + step
+            low[dofs] = centre - step
         limit = self._position
         if limit.projection_matrix is None:
             return low, high
@@ -91,6 +108,51 @@ class IKProblem:
         high[dofs] = np.minimum(high[dofs], limit.gain * self._to_upper[dofs])
         low[dofs] = np.maximum(low[dofs], -limit.gain * self._from_lower[dofs])
         return low, high
+
+
+def solver_scratch(rows: int, nv: int) -> tuple[np.ndarray, np.ndarray]:
+    """The rows' absent lower bounds and the constraints' senses, made once (`solve_smooth`)."""
+    return np.full(rows, -NO_BOUND), np.zeros(nv + rows, dtype=c_int)
+
+
+def solve_smooth(
+    H: np.ndarray,
+    c: np.ndarray,
+    box: tuple[np.ndarray, np.ndarray],
+    rows: tuple[np.ndarray, np.ndarray],
+    smooth: tuple[np.ndarray, np.ndarray],
+    scratch: tuple[np.ndarray, np.ndarray],
+) -> np.ndarray:
+    """The step minimising `1/2 dq'H dq + c'dq` within the `box` (low, high), the `rows`
+    (G dq <= h) and the `smooth` bounds (the acceleration limits' low and high).
+
+    With the smooth bounds in the QP a stop short of the other arm is planned within what the
+    arm can do. When they make it infeasible (an approach too fast to brake in time, or
+    braking at a joint limit) it is solved without them and its answer clipped to them,
+    unless the clipped answer would break the rows (close on the other arm): then the
+    collision limit wins over smoothness. mink.NoSolutionFound if it has no solution even so.
+    daqp is called directly: qpsolvers' generic wrapper cost a sixth of a solve. `scratch`:
+    arrays of -NO_BOUND and of c_int zeros (`solver_scratch`), at least as long as the rows
+    and as the rows and the box."""
+    (low, high), (G, h), (smooth_low, smooth_high) = box, rows, smooth
+    free, sense = scratch[0][: h.size], scratch[1][: h.size + low.size]
+    step, _, exitflag, _ = daqp.solve(
+        H,
+        c,
+        G,
+        np.concatenate([np.minimum(high, smooth_high), h]),
+        np.concatenate([np.maximum(low, smooth_low), free]),
+        sense,
+    )
+    if exitflag > 0:
+        return step
+    step, _, exitflag, _ = daqp.solve(
+        H, c, G, np.concatenate([high, h]), np.concatenate([low, free]), sense
+    )
+    if exitflag <= 0:
+        raise mink.NoSolutionFound("daqp")
+    clipped = np.clip(step, smooth_low, smooth_high)
+    return clipped if np.all(G @ clipped <= h + 1e-9) else step
 
 
 class BrakingCollisionLimit(mink.Limit):
@@ -127,6 +189,13 @@ class BrakingCollisionLimit(mink.Limit):
         assert constraint.G is not None and constraint.h is not None  # mink: None if inactive
         gap = np.maximum(constraint.h, 0.0)
         return mink.limits.Constraint(G=constraint.G, h=dt * np.sqrt(2.0 * ARM_BRAKING * gap))
+
+    def stays_clear(self, data: mujoco.MjData, motion: np.ndarray) -> bool:
+        """Whether every guarded pair surely stays beyond the detection distance, where the
+        limit has no rows, while each joint moves by at most `motion` (per qpos address): a
+        pair closes by at most that motion times its joints' levers (`PairGaps.closing`)."""
+        reach = self.limit.collision_detection_distance + self.gaps.closing(motion)
+        return not self.gaps.may_be_within(data, reach)
 
     def active_rows(
         self, configuration: mink.Configuration, dt: float

@@ -4,6 +4,7 @@ step (IK at `control_dt`) drives `substeps` physics steps."""
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 import mink
 import mujoco
@@ -17,6 +18,7 @@ from ..core.primitives import Step, StepKind
 from ..core.scheduler import Action, Task
 from . import names as c
 from .hooks import BuildHooks
+from .ik_rate import IKRate
 from .parts import BuildParts, make_parts
 from .readout import measurements
 from .stops import no_motion_reason, stall_reason, warning_reason
@@ -41,6 +43,8 @@ class BuildLoop:
         self._command_gap = np.array([joints, 2 * joints + 1])
         self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
         self.placed = self.steps = 0
+        self.ik_rate = IKRate(self.ik, self.dispatch, config)
+        self._ik_error = {a: self._error_of(a) for a in c.ARMS}
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
 
@@ -54,6 +58,9 @@ class BuildLoop:
         """The primitive step the arm is in (None when idle)."""
         return self.dispatch.step_of(arm)
 
+    def _error_of(self, arm: Arm) -> Callable[[], float]:
+        return lambda: self.ik.error(arm)[0]
+
     # --- one control step, in parts --------------------------------------------------------
     def _feed_spot(self) -> None:
         if self.spawner.current is None and self.custody.needs_brick():
@@ -62,9 +69,9 @@ class BuildLoop:
                 self.hooks.on_spawn(slot, self.data)
 
     def _drive_arms(self) -> None:
-        """Advance each arm's primitive and aim the IK at its pose."""
+        """Advance each arm's primitive (the IK's error asked only as a move ends)."""
         for a in c.ARMS:
-            self.ik.set_target(a, self.dispatch.advance(a, self.ik.error(a)[0], self._on_step_done))
+            self.dispatch.advance(a, self._ik_error[a], self._on_step_done)
 
     def _on_step_done(self, arm: Arm, step: Step, task: Task | None) -> None:
         self.last_progress = self.data.time
@@ -89,12 +96,9 @@ class BuildLoop:
                 self.hooks.on_placed(self.placed)
 
     def _solve_ik(self) -> None:
-        if self.hooks.on_ik is None:
-            self.ik.step()
-            return
         start = time.perf_counter()
-        self.ik.step()
-        self.hooks.on_ik(time.perf_counter() - start)
+        if self.ik_rate.step() and self.hooks.on_ik is not None:
+            self.hooks.on_ik(time.perf_counter() - start)
 
     def _step_physics(self, command: np.ndarray) -> bool:
         """The joint and gripper targets, ramped across the physics steps (stepped targets
@@ -153,9 +157,9 @@ class BuildLoop:
 
     def expert_targets(self) -> bool:
         """The scripted builder's half of a control step before the IK: it feeds the spot,
-        tells the schedule where the arms are and advances each arm's primitive, aiming the
-        IK at its pose (`dispatch.runners[arm].pose`, the gap `.gap`). False once every brick
-        is placed and has settled."""
+        tells the schedule where the arms are and advances each arm's primitive (the pose it
+        commands is `dispatch.runners[arm].pose`, the gap `.gap`). False once every brick is
+        placed and has settled."""
         self._feed_spot()
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
@@ -167,7 +171,7 @@ class BuildLoop:
         """The IK's joint solution and the hands' gaps as a command, `handles.ctrl_index`
         order (a view, rewritten each control step)."""
         command = self._command
-        command[self._command_q] = self.ik.configuration.q[self._ik_q]
+        command[self._command_q] = self.ik.q[self._ik_q]
         command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
         return command
 
@@ -184,7 +188,7 @@ class BuildLoop:
         """The measurements of the build as it stands, `failure` the reason it stopped early."""
         self.monitor.flush()
         self.custody.finish()
-        return measurements(self.parts, self.steps, failure, wall)
+        return measurements(self.parts, self.steps, self.ik_rate.solves, failure, wall)
 
     def run(self, hooks: BuildHooks = BuildHooks()) -> Measurements:
         """Build the plan: control steps until every brick is placed and has settled, or until

@@ -54,9 +54,13 @@ class PairGaps:
         self.model = model
         self.g1, self.g2 = np.asarray(g1, dtype=int), np.asarray(g2, dtype=int)
         self._rsum = model.geom_rbound[self.g1] + model.geom_rbound[self.g2]
-        lever = levers(model, np.unique(np.concatenate([self.g1, self.g2])))
+        geoms = np.unique(np.concatenate([self.g1, self.g2]))
+        lever = levers(model, geoms)
         self._qpos = np.flatnonzero(lever) if qpos is None else np.asarray(qpos, dtype=int)
         self._lever = lever[self._qpos]
+        # Each pair's own levers, for `closing`: only the joints above its two geoms move it.
+        own = {int(g): levers(model, np.array([g]))[self._qpos] for g in geoms}
+        self._pair_lever = np.array([own[int(a)] + own[int(b)] for a, b in zip(self.g1, self.g2)])
         # A pair's bound is its `_base` less `_closed`, how far any two points can have closed
         # since the start: one subtraction a call serves every pair.
         self._base = np.full(self.g1.size, -np.inf)  # nothing known yet
@@ -66,31 +70,50 @@ class PairGaps:
         self._fromto = np.zeros(6)
         self.measured = 0  # exact measurements made, for tests and profiles
 
-    def may_be_within(self, data: mujoco.MjData, distance: float) -> bool:
-        """False only if every pair is surely farther apart than `distance`."""
+    def _carry(self, data: mujoco.MjData) -> float:
+        """Count how far any pair can have closed since the last call; the least bound now."""
         q = data.qpos[self._qpos]
         if self._q is not None:
             self._closed += float(self._lever @ np.abs(q - self._q))
         self._q = q
-        if self._least_base - self._closed > distance:
+        return self._least_base - self._closed
+
+    def _refresh(self, data: mujoco.MjData, pairs: np.ndarray) -> np.ndarray:
+        """The pairs' bounds, raised to the gaps between their bounding spheres where those
+        are larger (and kept)."""
+        diff = data.geom_xpos[self.g1[pairs]] - data.geom_xpos[self.g2[pairs]]
+        spheres = np.sqrt(np.einsum("ij,ij->i", diff, diff)) - self._rsum[pairs]
+        self._base[pairs] = np.maximum(self._base[pairs], spheres + self._closed)
+        return self._base[pairs] - self._closed
+
+    def _measure(self, data: mujoco.MjData, i: int, reach: float) -> float:
+        """The pair's exact distance (`reach` if it is farther), kept as its bound."""
+        self.measured += 1
+        gap = mujoco.mj_geomDistance(
+            self.model, data, int(self.g1[i]), int(self.g2[i]), reach, self._fromto
+        )
+        self._base[i] = gap + self._closed
+        return gap
+
+    def closing(self, motion: np.ndarray) -> np.ndarray:
+        """The most each pair can close while each coordinate moves by at most `motion` (per
+        qpos address)."""
+        return self._pair_lever @ motion[self._qpos]
+
+    def may_be_within(self, data: mujoco.MjData, distance: float | np.ndarray) -> bool:
+        """False only if every pair is surely farther apart than `distance` (one for all, or
+        one per pair)."""
+        least = self._carry(data)
+        one = isinstance(distance, float)
+        if least > (distance if one else float(np.max(distance))):
             return False
         near = np.flatnonzero(self._base - self._closed <= distance)
-        diff = data.geom_xpos[self.g1[near]] - data.geom_xpos[self.g2[near]]
-        spheres = np.sqrt(np.einsum("ij,ij->i", diff, diff)) - self._rsum[near]
-        self._base[near] = spheres + self._closed  # the spheres' bound holds too
+        bounds = self._refresh(data, near)
+        asked = np.full(near.size, distance) if one else np.asarray(distance)[near]
         within = False
-        for i in near[spheres <= distance]:
-            self.measured += 1
-            gap = mujoco.mj_geomDistance(
-                self.model,
-                data,
-                int(self.g1[i]),
-                int(self.g2[i]),
-                distance + REFRESH_REACH,
-                self._fromto,
-            )
-            self._base[i] = gap + self._closed
-            if gap <= distance:
+        for k in np.flatnonzero(bounds <= asked):
+            reach = float(asked[k])
+            if self._measure(data, int(near[k]), reach + REFRESH_REACH) <= reach:
                 within = True
                 break
         self._least_base = float(self._base.min())

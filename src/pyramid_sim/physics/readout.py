@@ -11,7 +11,7 @@ from .parts import BuildParts
 
 
 def measurements(
-    parts: BuildParts, physics_steps: int, failure: str | None, wall: float
+    parts: BuildParts, physics_steps: int, ik_solves: int, failure: str | None, wall: float
 ) -> Measurements:
     """The final state of every brick and every figure the parts kept."""
     d, custody, monitor = parts.data, parts.custody, parts.monitor
@@ -49,4 +49,5 @@ def measurements(
         closest_arm_m=parts.clearance.closest,
         closest_arm_time=parts.clearance.closest_time,
         physics_steps=physics_steps,
+        ik_solves=ik_solves,
     )
