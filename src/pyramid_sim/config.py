@@ -102,7 +102,7 @@ class MotionConfig:
     settle_before_release: float = 0.15  # s held still at the release pose
     position_tolerance: float = 0.002  # m, IK target reached
     arm_min_distance: float = 0.05  # m the IK keeps between the arms' links (beyond the lockstep)
-    free_ik_interval: int = 3  # control steps per IK solve in free motion (1: every step, up to 4)
+    free_ik_interval: int = 1  # control steps per IK solve in free motion (up to 4; see docs)
 
     def __post_init__(self) -> None:
         check_range("hover distance", self.hover, 0.02, 0.3)

@@ -22,7 +22,8 @@ SPEC = StructureSpec("pyramid-even", layers=1)
 
 
 def test_plans_are_followed_only_in_free_motion_beyond_the_collision_limits_reach():
-    config = SimConfig()
+    base = SimConfig()
+    config = replace(base, motion=replace(base.motion, free_ik_interval=3))
     loop = BuildLoop.of(prepare(SPEC, config), config)
     ik = loop.ik
     check = mink.Configuration(ik.model)  # mink's own limit, on a configuration of its own
@@ -52,9 +53,8 @@ def test_plans_are_followed_only_in_free_motion_beyond_the_collision_limits_reac
     assert measured.ik_solves + coasted == control_steps
 
 
-def test_at_an_interval_of_one_the_ik_solves_every_control_step():
-    base = SimConfig()
-    config = replace(base, motion=replace(base.motion, free_ik_interval=1))
+def test_by_default_the_ik_solves_every_control_step():
+    config = SimConfig()
     measured = BuildLoop.of(prepare(SPEC, config), config).run()
     assert measured.failure is None
     assert measured.ik_solves == measured.physics_steps // config.substeps
