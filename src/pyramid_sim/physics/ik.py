@@ -171,9 +171,8 @@ class DualArmIK:
         return self._plan is not None and self._plan.advance()
 
     def may_span(self, span: int) -> bool:
-        """Whether a step over `span` control steps may be granted: not if the arms could
-        come within the collision limit's reach even at their present speed (`step` also
-        checks the speed it solves for)."""
+        """Whether a step over `span` control steps may be granted: not if the arms could come
+        within the collision limit's reach at their present speed (`step` checks the new)."""
         return self._stays_clear(span, self.velocity)
 
     def _stays_clear(self, span: int, velocity: np.ndarray) -> bool:
@@ -197,9 +196,10 @@ class DualArmIK:
         self._set_span(span)
         H, c = self.problem.objective()
         seconds = self.dt * span
-        drift: float | np.ndarray = 0.0
-        late, box = self.dt, self.problem.bounds()  # at one step, no ramp
-        if span > 1:
+        drift: float | np.ndarray
+        if span == 1:  # no ramp
+            drift, late, box = 0.0, self.dt, self.problem.bounds()
+        else:
             early, late = ramp_split(self.dt, span)
             drift = early * self.velocity
             box = self.problem.bounds(late, drift)

@@ -96,8 +96,11 @@ class BuildLoop:
                 self.hooks.on_placed(self.placed)
 
     def _solve_ik(self) -> None:
+        if self.hooks.on_ik is None:
+            self.ik_rate.step()
+            return
         start = time.perf_counter()
-        if self.ik_rate.step() and self.hooks.on_ik is not None:
+        if self.ik_rate.step():
             self.hooks.on_ik(time.perf_counter() - start)
 
     def _step_physics(self, command: np.ndarray) -> bool:
