@@ -73,6 +73,10 @@ class DualArmIK:
         self._span = 1  # the span the task gains are set for
         self._plan: SpanPlan | None = None  # the last solve's, while it covers several steps
         self.limited_q, self.q_low, self.q_high = joint_ranges(self.model, robot)
+        # The same ranges over the whole of qpos (unbounded elsewhere): two in-place clamps.
+        self._q_min = np.full(self.model.nq, -np.inf)
+        self._q_max = np.full(self.model.nq, np.inf)
+        self._q_min[self.limited_q], self._q_max[self.limited_q] = self.q_low, self.q_high
         self.reset_home()
 
     def home(self, arm: Arm) -> np.ndarray:
@@ -148,7 +152,7 @@ class DualArmIK:
             self._plan = SpanPlan(q0, self.velocity, velocity, self.dt, span, ranges)
             q_next = self._plan.rows[-1]
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
-        q_next[self.limited_q] = np.clip(q_next[self.limited_q], self.q_low, self.q_high)
+        np.minimum(np.maximum(q_next, self._q_min, out=q_next), self._q_max, out=q_next)
         self.velocity = velocity
         self.configuration.update(q_next)
         return True

@@ -110,9 +110,14 @@ class IKProblem:
         return low, high
 
 
-def solver_scratch(rows: int, nv: int) -> tuple[np.ndarray, np.ndarray]:
-    """The rows' absent lower bounds and the constraints' senses, made once (`solve_smooth`)."""
-    return np.full(rows, -NO_BOUND), np.zeros(nv + rows, dtype=c_int)
+Scratch = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def solver_scratch(rows: int, nv: int) -> Scratch:
+    """The solver's upper and lower bounds (the box, then the rows; the rows' lower bounds
+    absent) and the constraints' senses, made once (`solve_smooth`)."""
+    size = nv + rows
+    return np.zeros(size), np.full(size, -NO_BOUND), np.zeros(size, dtype=c_int)
 
 
 def solve_smooth(
@@ -121,7 +126,7 @@ def solve_smooth(
     box: tuple[np.ndarray, np.ndarray],
     rows: tuple[np.ndarray, np.ndarray],
     smooth: tuple[np.ndarray, np.ndarray],
-    scratch: tuple[np.ndarray, np.ndarray],
+    scratch: Scratch,
 ) -> np.ndarray:
     """The step minimising `1/2 dq'H dq + c'dq` within the `box` (low, high), the `rows`
     (G dq <= h) and the `smooth` bounds (the acceleration limits' low and high).
@@ -132,23 +137,18 @@ def solve_smooth(
     unless the clipped answer would break the rows (close on the other arm): then the
     collision limit wins over smoothness. mink.NoSolutionFound if it has no solution even so.
     daqp is called directly: qpsolvers' generic wrapper cost a sixth of a solve. `scratch`:
-    arrays of -NO_BOUND and of c_int zeros (`solver_scratch`), at least as long as the rows
-    and as the rows and the box."""
+    `solver_scratch`'s arrays, for at least as many rows."""
     (low, high), (G, h), (smooth_low, smooth_high) = box, rows, smooth
-    free, sense = scratch[0][: h.size], scratch[1][: h.size + low.size]
-    step, _, exitflag, _ = daqp.solve(
-        H,
-        c,
-        G,
-        np.concatenate([np.minimum(high, smooth_high), h]),
-        np.concatenate([np.maximum(low, smooth_low), free]),
-        sense,
-    )
+    nv, size = low.size, low.size + h.size
+    upper, lower, sense = (a[:size] for a in scratch)
+    np.minimum(high, smooth_high, out=upper[:nv])
+    np.maximum(low, smooth_low, out=lower[:nv])
+    upper[nv:] = h
+    step, _, exitflag, _ = daqp.solve(H, c, G, upper, lower, sense)
     if exitflag > 0:
         return step
-    step, _, exitflag, _ = daqp.solve(
-        H, c, G, np.concatenate([high, h]), np.concatenate([low, free]), sense
-    )
+    upper[:nv], lower[:nv] = high, low
+    step, _, exitflag, _ = daqp.solve(H, c, G, upper, lower, sense)
     if exitflag <= 0:
         raise mink.NoSolutionFound("daqp")
     clipped = np.clip(step, smooth_low, smooth_high)

@@ -28,20 +28,25 @@ class ZoneWatch:
     ) -> None:
         self.zones = dict(zones)
         self._xpos = data.xpos
-        self._bodies = handles.zone_bodies
+        self._bodies = {a: list(handles.zone_bodies[a]) for a in c.ARMS}
         self.violations = 0  # control steps with both arms inside one zone
+
+    def _points(self, arm: Arm) -> list[list[float]]:
+        """The arm's zone bodies' x and y, as floats (each test then costs no array lookup)."""
+        return self._xpos[self._bodies[arm], :2].tolist()
 
     def outside(self, arm: Arm, zone: Zone) -> bool:
         """True when none of the arm's zone bodies is inside `zone`."""
-        return not zone.any_inside(self._xpos[b] for b in self._bodies[arm])
+        return not zone.any_inside(self._points(arm))
 
     def update(self, listener: ZoneListener) -> bool:
         """Tell `listener` where each arm is; True (and counted) if both are in one zone."""
         shared = False
+        points = {a: self._points(a) for a in c.ARMS}
         for name, zone in self.zones.items():
-            outside = {a: self.outside(a, zone) for a in c.ARMS}
+            outside = {a: not zone.any_inside(points[a]) for a in c.ARMS}
             for a in c.ARMS:
                 listener.report_zone(a, outside[a], name)
-            shared = shared or not (outside["left"] or outside["right"])
+            shared = shared or not any(outside.values())
         self.violations += shared
         return shared
