@@ -127,7 +127,8 @@ def test_an_ik_with_no_solution_stops_the_build_with_its_reason():
 
     loop = BuildLoop.of(PLAN, CONFIG)
     q = loop.ik.configuration.q.copy()
-    q[loop.ik.limited_q[1]] = loop.ik.q_high[1] + 0.5  # the left shoulder far past its range
+    shoulder = loop.ik.qadr["left"][1]
+    q[shoulder] = loop.ik.q_max[shoulder] + 0.5  # the left shoulder far past its range
     loop.ik.configuration.update(q)
     result = judge(loop.run(), CONFIG)
     assert not result.success and "finished" in result.failed_checks

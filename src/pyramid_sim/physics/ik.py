@@ -72,11 +72,7 @@ class DualArmIK:
         self.velocity = np.zeros(self.model.nv)
         self._span = 1  # the span the task gains are set for
         self._plan: SpanPlan | None = None  # the last solve's, while it covers several steps
-        self.limited_q, self.q_low, self.q_high = joint_ranges(self.model, robot)
-        # The same ranges over the whole of qpos (unbounded elsewhere): two in-place clamps.
-        self._q_min = np.full(self.model.nq, -np.inf)
-        self._q_max = np.full(self.model.nq, np.inf)
-        self._q_min[self.limited_q], self._q_max[self.limited_q] = self.q_low, self.q_high
+        self.q_min, self.q_max = joint_ranges(self.model, robot)
         self.reset_home()
 
     def home(self, arm: Arm) -> np.ndarray:
@@ -147,12 +143,12 @@ class DualArmIK:
         if span == 1:
             q_next = self.configuration.integrate(velocity, self.dt)
         else:
-            ranges = (self.limited_q, self.q_low, self.q_high)
+            ranges = (self.q_min, self.q_max)
             q0 = self.configuration.q
             self._plan = SpanPlan(q0, self.velocity, velocity, self.dt, span, ranges)
             q_next = self._plan.rows[-1]
         # The clip may overrule the QP's braking at a joint limit: keep the limits exact.
-        np.minimum(np.maximum(q_next, self._q_min, out=q_next), self._q_max, out=q_next)
+        np.minimum(np.maximum(q_next, self.q_min, out=q_next), self.q_max, out=q_next)
         self.velocity = velocity
         self.configuration.update(q_next)
         return True

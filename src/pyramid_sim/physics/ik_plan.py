@@ -26,8 +26,8 @@ def span_gain(gain: float, span: int) -> float:
 
 class SpanPlan:
     """The joint positions at each control step of a span, from `q0` with the velocity
-    ramping from `v0` to `v`; hinges and slides only (positions integrate as sums), the
-    `limited` coordinates clipped to [low, high]."""
+    ramping from `v0` to `v`; hinges and slides only (positions integrate as sums), clamped
+    to `ranges` (each coordinate's low and high end)."""
 
     def __init__(
         self,
@@ -36,13 +36,13 @@ class SpanPlan:
         v: np.ndarray,
         dt: float,
         span: int,
-        limited: tuple[np.ndarray, np.ndarray, np.ndarray],
+        ranges: tuple[np.ndarray, np.ndarray],
     ) -> None:
         share = np.arange(1, span + 1)[:, None] / span
         self.velocities = v0 + (v - v0) * share
         self.rows = q0 + np.cumsum(self.velocities, axis=0) * dt
-        index, low, high = limited
-        self.rows[:, index] = np.clip(self.rows[:, index], low, high)
+        low, high = ranges
+        np.minimum(np.maximum(self.rows, low, out=self.rows), high, out=self.rows)
         self.row = 0
 
     @property

@@ -93,10 +93,10 @@ def guarded_pairs(
     return pairs
 
 
-def joint_ranges(
-    model: mujoco.MjModel, robot: RobotDescription
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The arm joints' qpos addresses, both arms, and their ranges' low and high ends."""
+def joint_ranges(model: mujoco.MjModel, robot: RobotDescription) -> tuple[np.ndarray, np.ndarray]:
+    """The low and high ends of every qpos coordinate: the arm joints' ranges, both arms, and
+    unbounded elsewhere (so a clamp is two whole-array passes)."""
     ids = [model.joint(j).id for a in c.ARMS for j in robot.arms[a].joints]
-    low, high = model.jnt_range[ids].T
-    return model.jnt_qposadr[ids], low, high
+    low, high = np.full(model.nq, -np.inf), np.full(model.nq, np.inf)
+    low[model.jnt_qposadr[ids]], high[model.jnt_qposadr[ids]] = model.jnt_range[ids].T
+    return low, high
