@@ -62,20 +62,22 @@ class IKProblem:
         self._low[self._velocity_dofs] = -dt * self._velocity_max
         self._to_upper = np.empty(nv)
         self._from_lower = np.empty(nv)
+        # The moving tasks' weighted Jacobians and errors, stacked into arrays kept from call
+        # to call.
+        ends = np.cumsum([0] + [t.cost.size for t in self._moving])
+        self._rows = [slice(a, b) for a, b in zip(ends[:-1], ends[1:])]
+        self._W, self._e = np.zeros((ends[-1], nv)), np.zeros(ends[-1])
 
     def objective(self) -> tuple[np.ndarray, np.ndarray]:
         """(H, c) of `1/2 dq'H dq + c'dq`: the tasks' weighted residuals stacked, plus the
         damping and each task's Levenberg-Marquardt term on the diagonal (mink's sum)."""
         configuration = self.configuration
-        jacobians, errors, mu = [], [], 0.0
-        for task in self._moving:
-            jacobian, error, task_mu = task.compute_qp_residual(configuration)
-            jacobians.append(jacobian)
-            errors.append(error)
+        W, e, mu = self._W, self._e, 0.0
+        for task, rows in zip(self._moving, self._rows):
+            W[rows], e[rows], task_mu = task.compute_qp_residual(configuration)
             mu += task_mu
-        W = np.vstack(jacobians)
         H = W.T @ W + self._H0
-        c = -(np.concatenate(errors) @ W)
+        c = -(e @ W)
         for task, wj in self._postures:
             error = task.cost * (-task.gain * task.compute_error(configuration))
             c -= error @ wj

@@ -7,6 +7,7 @@ from collections.abc import Mapping
 from typing import Protocol
 
 import mujoco
+import numpy as np
 
 from ..choices import Arm
 from ..core.zone import Zone
@@ -28,7 +29,7 @@ class ZoneWatch:
     ) -> None:
         self.zones = dict(zones)
         self._xpos = data.xpos
-        self._bodies = {a: list(handles.zone_bodies[a]) for a in c.ARMS}
+        self._bodies = {a: np.array(handles.zone_bodies[a]) for a in c.ARMS}
         self.violations = 0  # control steps with both arms inside one zone
 
     def _points(self, arm: Arm) -> list[list[float]]:
