@@ -56,6 +56,12 @@ def test_the_pure_modules_import_and_plan_with_mujoco_blocked():
     assert any(n.startswith("pyramid_sim.core.") for n in names)
 
 
+# The one private name taken from outside: mink's compiled Lie operations, the ones mink's own
+# FrameTask calls, which the IK calls without mink's Python scaffolding (physics/ik_frames.py;
+# tests/physics/test_ik_frames.py fails if mink stops shipping them).
+ALLOWED_PRIVATE = {"ik_frames.py: _lie_ops_c"}
+
+
 def test_no_module_imports_a_private_name_of_another():
     offenders = []
     for path in SRC.rglob("*.py"):
@@ -66,7 +72,7 @@ def test_no_module_imports_a_private_name_of_another():
                     for a in node.names
                     if a.name.startswith("_") and not a.name.startswith("__")
                 ]
-    assert offenders == []
+    assert sorted(set(offenders) - ALLOWED_PRIVATE) == []
 
 
 def test_no_module_is_over_300_lines():

@@ -1,8 +1,9 @@
 """The IK's quadratic program, assembled from mink's tasks and limits without mink's general
 path, which costs more than the physics step it drives.
 
-mink stays the source of every term: the objective stacks the tasks' own weighted residuals as
-`mink.build_ik` does (a posture task's Jacobian, the identity, is taken once); the joint
+mink stays the source of every term: the objective stacks the tasks' weighted residuals as
+`mink.build_ik` does (the frame tasks' through mink's compiled operations on the IK's own
+MjData, ik_frames; a posture task's Jacobian, the identity, taken once); the joint
 position and velocity limits, whose rows are plus and minus unit vectors, become the solver's
 box bounds (with the acceleration bounds, one pair per joint); and the collision limit gives
 only the rows of the pairs within its detection distance, none while the arms are apart. The
@@ -19,6 +20,7 @@ import mink
 import mujoco
 import numpy as np
 
+from .ik_frames import FrameResiduals
 from .pair_gaps import PairGaps
 
 NO_BOUND = 1e30  # what daqp takes for an absent bound
@@ -40,7 +42,11 @@ class IKProblem:
     ) -> None:
         self.configuration = configuration
         self.nv = nv = configuration.model.nv
-        self._moving = [t for t in tasks if not isinstance(t, mink.PostureTask)]
+        moving = [t for t in tasks if not isinstance(t, mink.PostureTask)]
+        frames = [t for t in moving if isinstance(t, mink.FrameTask)]
+        # Frame tasks first: their rows come from ik_frames, any other moving task's from mink.
+        self._moving = frames + [t for t in moving if not isinstance(t, mink.FrameTask)]
+        self._frames = FrameResiduals(configuration, frames)
         # A posture task's Jacobian is constant: its weighted rows and their part of H once.
         self._postures = [
             (t, t.cost[:, None] * t.compute_jacobian(configuration))
@@ -72,8 +78,9 @@ class IKProblem:
         """(H, c) of `1/2 dq'H dq + c'dq`: the tasks' weighted residuals stacked, plus the
         damping and each task's Levenberg-Marquardt term on the diagonal (mink's sum)."""
         configuration = self.configuration
-        W, e, mu = self._W, self._e, 0.0
-        for task, rows in zip(self._moving, self._rows):
+        W, e, frames = self._W, self._e, len(self._frames.tasks)
+        mu = self._frames.write(W, e, self._rows[:frames])
+        for task, rows in zip(self._moving[frames:], self._rows[frames:]):
             W[rows], e[rows], task_mu = task.compute_qp_residual(configuration)
             mu += task_mu
         H = W.T @ W + self._H0
