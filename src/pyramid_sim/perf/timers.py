@@ -11,13 +11,16 @@ from typing import Any
 
 def ik_floor_calls() -> list[tuple[Any, str]]:
     """What the IK calls on every control step and cannot do without while mink is the source
-    of its tasks: mink's terms of the two frame tasks and the posture task, the configuration's
-    kinematics and integration, and daqp's solve."""
+    of its tasks: the two frame tasks' terms (mink's compiled operations on the IK's MjData,
+    `FrameResiduals.write`) and the posture task's, the configuration's kinematics and
+    integration, and daqp's solve."""
     import daqp
     import mink
 
+    from ..physics.ik_frames import FrameResiduals
+
     return [
-        (mink.FrameTask, "compute_qp_residual"),
+        (FrameResiduals, "write"),
         (mink.PostureTask, "compute_error"),
         (mink.Configuration, "update"),
         (mink.Configuration, "integrate"),
