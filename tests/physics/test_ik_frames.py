@@ -2,13 +2,16 @@
 operations, are mink's own `FrameTask.compute_qp_residual`, bit for bit; and with mink's
 path instead (a mink without those operations) the same."""
 
+import mink
 import numpy as np
+import pytest
 
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.poses import Pose
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.physics.ik_frames import FrameResiduals
+from pyramid_sim.physics.ik_terms import frame_task
 
 
 def _rows_of(frames: FrameResiduals) -> tuple[np.ndarray, np.ndarray, float]:
@@ -42,3 +45,12 @@ def test_the_frame_residuals_are_minks_on_either_path():
             frames.fast = True
             np.testing.assert_array_equal(slow[0], W)
             np.testing.assert_array_equal(slow[1], e)
+
+
+def test_a_frame_task_without_a_target_is_refused_as_mink_refuses_it():
+    ik = DualArmIK(SimConfig())
+    frames = FrameResiduals(ik.configuration, [frame_task(ik.robot.arms["left"].tcp_site)])
+    for fast in (True, False):
+        frames.fast = fast
+        with pytest.raises(mink.TargetNotSet):
+            _rows_of(frames)

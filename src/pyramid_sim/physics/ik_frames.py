@@ -15,7 +15,7 @@ import numpy as np
 try:  # mink's compiled Lie operations, which its FrameTask uses when present
     from mink.lie import _lie_ops_c as lie
 except ImportError:  # a mink built without them
-    lie = None
+    lie = None  # type: ignore[assignment]
 
 _JACOBIAN = {"site": mujoco.mj_jacSite, "body": mujoco.mj_jacBody, "geom": mujoco.mj_jacGeom}
 _POSE = {
@@ -51,6 +51,8 @@ class FrameResiduals:
         configuration, jacobian, mu = self.configuration, self._jacobian, 0.0
         model, data = configuration.model, configuration.data
         for (task, frame_id, pos, mat, jac_func), r in zip(self._frames, rows):
+            if task.transform_target_to_world is None:
+                raise mink.TargetNotSet(type(task).__name__)
             target = task.transform_target_to_world.wxyz_xyz
             frame = lie.xmat_xpos_to_wxyz_xyz(mat, pos)
             jac_func(model, data, jacobian[:3], jacobian[3:], frame_id)
