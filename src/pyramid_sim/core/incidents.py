@@ -86,21 +86,21 @@ class KnockWatch:
     """Placed bricks and where they were let go; reports each one that moves away once."""
 
     def __init__(self) -> None:
-        self.bodies: list[int] = []
+        self.bodies = np.zeros(0, dtype=int)  # an index into MuJoCo's per-body arrays
         self.bricks: list[int] = []
         self.slots: list[int] = []
         self.rest = np.zeros((0, 3))
         self.knocked: set[int] = set()
 
     def placed(self, brick: int, slot: int, body: int, position: np.ndarray) -> None:
-        self.bodies.append(body)
+        self.bodies = np.append(self.bodies, body)
         self.bricks.append(brick)
         self.slots.append(slot)
         self.rest = np.vstack([self.rest, position])
 
     def check(self, xpos: np.ndarray, time: float) -> list[Knock]:
         """New knocks, given every body's position now."""
-        if not self.bodies:
+        if self.bodies.size == 0:
             return []
         moved = np.linalg.norm(xpos[self.bodies] - self.rest, axis=1)
         knocks = []

@@ -25,10 +25,7 @@ class Zone:
         return self.x_min <= point[0] <= self.x_max and self.y_min <= point[1] <= self.y_max
 
     def any_inside(self, points: Iterable[Sequence[float]]) -> bool:
-        for x, y, *_ in points:
-            if self.x_min <= x <= self.x_max and self.y_min <= y <= self.y_max:
-                return True
-        return False
+        return any(self.contains(p) for p in points)
 
     def meets(self, other: Zone) -> bool:
         return (

@@ -56,7 +56,6 @@ class BrickCustody:
         self.knocks: list[Knock] = []
         self.knock_watch = KnockWatch()
         self._awake_before = False
-        self._watched = np.zeros(0, dtype=int)  # the knock watch's bodies, as an index
         self._body_awake = data.body_awake  # a view MuJoCo keeps up
         self.failure: str | None = None  # set when a brick has been dropped too often
         # Where each brick lay when it was last put down by the magazine or the spawner, and
@@ -102,7 +101,6 @@ class BrickCustody:
         slot = self.slot_of[brick]
         body = self.handles.brick_body[slot]
         self.knock_watch.placed(brick, slot, body, self.data.xpos[body].copy())
-        self._watched = np.array(self.knock_watch.bodies)
 
     def track(self, steps: dict[str, Step | None]) -> list[Drop]:
         """Once per control step, given each arm's current step: the slip of each carried
@@ -150,7 +148,7 @@ class BrickCustody:
         """Placed bricks that moved away from where they were let go. A brick MuJoCo has put
         to sleep cannot move, so the positions are compared only while a placed brick is awake,
         or was at the last look (it may have moved in between, then fallen asleep)."""
-        awake = bool(self._body_awake[self._watched].any())
+        awake = bool(self._body_awake[self.knock_watch.bodies].any())
         if awake or self._awake_before:
             self.knocks.extend(self.knock_watch.check(self.data.xpos, float(self.data.time)))
         self._awake_before = awake

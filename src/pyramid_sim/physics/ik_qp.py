@@ -20,7 +20,7 @@ import mink
 import mujoco
 import numpy as np
 
-from .ik_frames import FrameResiduals
+from .ik_frames import FrameResiduals, plain_frame_task
 from .pair_gaps import PairGaps
 
 NO_BOUND = 1e30  # what daqp takes for an absent bound
@@ -43,10 +43,6 @@ class IKProblem:
         self.configuration = configuration
         self.nv = nv = configuration.model.nv
         moving = [t for t in tasks if not isinstance(t, mink.PostureTask)]
-        frames = [t for t in moving if isinstance(t, mink.FrameTask)]
-        # Frame tasks first: their rows come from ik_frames, any other moving task's from mink.
-        self._moving = frames + [t for t in moving if not isinstance(t, mink.FrameTask)]
-        self._frames = FrameResiduals(configuration, frames)
         # A posture task's Jacobian is constant: its weighted rows and their part of H once.
         self._postures = [
             (t, t.cost[:, None] * t.compute_jacobian(configuration))
@@ -68,19 +64,24 @@ class IKProblem:
         self._low[self._velocity_dofs] = -dt * self._velocity_max
         self._to_upper = np.empty(nv)
         self._from_lower = np.empty(nv)
-        # The moving tasks' weighted Jacobians and errors, stacked into arrays kept from call
-        # to call.
-        ends = np.cumsum([0] + [t.cost.size for t in self._moving])
-        self._rows = [slice(a, b) for a, b in zip(ends[:-1], ends[1:])]
+        # The moving tasks' weighted Jacobians and errors, stacked in the tasks' order into
+        # arrays kept from call to call: mink's frame tasks' rows from ik_frames, any other
+        # task's from mink.
+        ends = np.cumsum([0] + [t.cost.size for t in moving])
+        rows = [slice(a, b) for a, b in zip(ends[:-1], ends[1:])]
         self._W, self._e = np.zeros((ends[-1], nv)), np.zeros(ends[-1])
+        frame = [plain_frame_task(t) for t in moving]
+        self._frames = FrameResiduals(configuration, [t for t in moving if plain_frame_task(t)])
+        self._frame_rows = [r for r, f in zip(rows, frame) if f]
+        self._others = [(t, r) for t, r, f in zip(moving, rows, frame) if not f]
 
     def objective(self) -> tuple[np.ndarray, np.ndarray]:
         """(H, c) of `1/2 dq'H dq + c'dq`: the tasks' weighted residuals stacked, plus the
         damping and each task's Levenberg-Marquardt term on the diagonal (mink's sum)."""
         configuration = self.configuration
-        W, e, frames = self._W, self._e, len(self._frames.tasks)
-        mu = self._frames.write(W, e, self._rows[:frames])
-        for task, rows in zip(self._moving[frames:], self._rows[frames:]):
+        W, e = self._W, self._e
+        mu = self._frames.write(W, e, self._frame_rows)
+        for task, rows in self._others:
             W[rows], e[rows], task_mu = task.compute_qp_residual(configuration)
             mu += task_mu
         H = W.T @ W + self._H0

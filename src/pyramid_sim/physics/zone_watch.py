@@ -36,10 +36,6 @@ class ZoneWatch:
         """The arm's zone bodies' x and y, as floats (each test then costs no array lookup)."""
         return self._xpos[self._bodies[arm], :2].tolist()
 
-    def outside(self, arm: Arm, zone: Zone) -> bool:
-        """True when none of the arm's zone bodies is inside `zone`."""
-        return not zone.any_inside(self._points(arm))
-
     def update(self, listener: ZoneListener) -> bool:
         """Tell `listener` where each arm is; True (and counted) if both are in one zone."""
         shared = False
