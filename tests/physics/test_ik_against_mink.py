@@ -1,6 +1,7 @@
-"""The IK's step is mink's: on states recorded from real builds (the arms far apart and close
-enough for the collision limit to bind), the velocity the IK's own QP assembly gives equals
-`mink.solve_ik` on the same configuration, tasks and limits, solved by the same solver."""
+"""The IK's step is mink's: on states recorded from real builds (the arms far apart, and near
+enough for the collision limit's rows to enter the QP), the velocity the IK's own QP assembly
+gives equals `mink.solve_ik` on the same configuration, tasks and limits, solved by the same
+solver."""
 
 import mink
 import numpy as np
@@ -40,7 +41,7 @@ def test_the_step_is_mink_solve_ik_on_states_from_a_build(schedule):
     assert len(states) == STATES
     # mink has no acceleration limit: the reference IK is solved without one too.
     ik = DualArmIK(config, limit_acceleration=False)
-    collision, binding, worst = ik.limits[-1], 0, 0.0
+    collision, near, worst = ik.limits[-1], 0, 0.0
     for q, targets in states:
         ik.configuration.update(q)
         for arm, target in zip(c.ARMS, targets):
@@ -50,7 +51,7 @@ def test_the_step_is_mink_solve_ik_on_states_from_a_build(schedule):
             ik.configuration, ik.task_list, ik.dt, "daqp", damping=ik.damping, limits=ik.limits
         )
         worst = max(worst, float(np.abs(ours - theirs).max()))
-        binding += collision.active_rows(ik.configuration, ik.dt)[1].size > 0
+        near += collision.active_rows(ik.configuration, ik.dt)[1].size > 0
     assert worst < 1e-8
     if schedule == "overlap":
-        assert binding > 10  # the arms worked within the collision limit's reach
+        assert near > 10  # states with the arms within the collision limit's reach
