@@ -11,9 +11,9 @@ import sys
 import mink
 import numpy as np
 import pytest
+from test_ik_qp import _ik_at
 
 from pyramid_sim.config import SimConfig
-from pyramid_sim.core.poses import Pose
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.physics.ik_frames import FrameResiduals, frame_id
@@ -27,23 +27,17 @@ def _rows_of(frames: FrameResiduals) -> tuple[np.ndarray, np.ndarray, float]:
     return W, e, mu
 
 
-def _ik_at(robot: str, seed: int) -> tuple[DualArmIK, FrameResiduals]:
-    """Both arms moved off home at random and aimed at random poses."""
-    rng = np.random.default_rng(seed)
-    ik = DualArmIK(SimConfig(robot=robot))
-    q = ik.configuration.q.copy()
-    for arm in c.ARMS:
-        q[ik.qadr[arm]] += rng.normal(0, 0.3, 7)
-    ik.configuration.update(q)
-    for arm in c.ARMS:
-        ik.set_target(arm, Pose(*rng.uniform([0.3, -0.4, 0.1], [0.7, 0.4, 0.4]), 0.3))
+def _frames_at(robot: str, seed: int) -> tuple[DualArmIK, FrameResiduals]:
+    """Both arms at random configurations, aimed at random poses (test_ik_qp's `_ik_at`), and
+    the residuals of their frame tasks."""
+    ik = _ik_at(np.random.default_rng(seed), robot)
     return ik, FrameResiduals(ik.configuration, [ik.tasks[a] for a in c.ARMS])
 
 
 @pytest.mark.parametrize("robot", ["panda", "baxter"])
 def test_the_frame_residuals_are_minks_bit_for_bit(robot):
     for seed in range(20):
-        ik, frames = _ik_at(robot, seed)
+        ik, frames = _frames_at(robot, seed)
         assert frames.fast  # the installed mink ships its compiled Lie operations
         minks = [ik.tasks[a].compute_qp_residual(ik.configuration) for a in c.ARMS]
         W, e, mu = _rows_of(frames)
@@ -55,8 +49,8 @@ def test_the_frame_residuals_are_minks_bit_for_bit(robot):
 _WITHOUT_NATIVE = """
 import json, sys
 sys.path[:0] = [{tests!r}]
-from test_ik_frames import _ik_at, _rows_of
-ik, frames = _ik_at("panda", 3)
+from test_ik_frames import _frames_at, _rows_of
+ik, frames = _frames_at("panda", 3)
 W, e, mu = _rows_of(frames)
 print(json.dumps([frames.fast, W.tolist(), e.tolist(), mu]))
 """
@@ -71,7 +65,7 @@ def test_without_minks_compiled_operations_minks_own_path_is_taken_and_agrees():
     )
     fast, W, e, mu = json.loads(out.stdout)
     assert fast is False
-    native = _rows_of(_ik_at("panda", 3)[1])
+    native = _rows_of(_frames_at("panda", 3)[1])
     np.testing.assert_allclose(W, native[0], atol=1e-12)
     np.testing.assert_allclose(e, native[1], atol=1e-12)
     assert mu == pytest.approx(native[2], rel=1e-9)
