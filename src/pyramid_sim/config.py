@@ -80,9 +80,16 @@ class LayoutConfig:
     spawn_xy: tuple[float, float] = (0.49, 0.01)
     spawn_yaw: float = math.pi / 2  # the seed turns the spawned brick 90 degrees
     spawn_jitter_mm: float = 0.0  # each spawned brick lands up to this far off the spot in x and y
+    # The structure moved from where its generator lays it: shifted (m, x and y) and turned
+    # (rad) about its footprint's centre. The learning variation draws these per episode.
+    structure_shift: tuple[float, float] = (0.0, 0.0)
+    structure_turn: float = 0.0
 
     def __post_init__(self) -> None:
         check_range("table top z", self.table_top_z, 0.0, 0.3)
+        check_range("structure shift x", self.structure_shift[0], -0.2, 0.2)
+        check_range("structure shift y", self.structure_shift[1], -0.2, 0.2)
+        check_range("structure turn", self.structure_turn, -math.pi / 2, math.pi / 2)
         check_range("spawn jitter (mm)", self.spawn_jitter_mm, 0.0, 10.0)
         check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
         check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)

@@ -2,15 +2,16 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 from typing import Any
 
 from ..choices import ARM_CHOICES, Arm, ArmChoice
 from ..config import SimConfig
 from ..errors import ConfigError
 from .assignment import Assignment, arrange, single_arm
-from .poses import Pose
-from .structures import StructureSpec
+from .poses import Pose, wrap_angle
+from .structures import BrickTarget, StructureSpec
 
 
 @dataclass(frozen=True)
@@ -48,6 +49,30 @@ class Plan:
         }
 
 
+def moved(
+    targets: tuple[BrickTarget, ...], shift: tuple[float, float], turn: float
+) -> tuple[BrickTarget, ...]:
+    """The targets turned by `turn` (rad) about the centre of their footprint, then shifted;
+    unchanged to the bit when both are zero."""
+    if turn == 0.0 and shift == (0.0, 0.0):
+        return targets
+    cx = sum(t.pose.x for t in targets) / len(targets)
+    cy = sum(t.pose.y for t in targets) / len(targets)
+    cos, sin = math.cos(turn), math.sin(turn)
+    return tuple(
+        replace(
+            t,
+            pose=Pose(
+                cx + shift[0] + cos * (t.pose.x - cx) - sin * (t.pose.y - cy),
+                cy + shift[1] + sin * (t.pose.x - cx) + cos * (t.pose.y - cy),
+                t.pose.z,
+                wrap_angle(t.pose.yaw + turn),
+            ),
+        )
+        for t in targets
+    )
+
+
 def _xyz(pose: Pose) -> list[float]:
     return [round(pose.x, 6), round(pose.y, 6), round(pose.z, 6)]
 
@@ -68,5 +93,6 @@ def make_plan(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") 
     # before itself); with two, centred on the spawn spot between them, as the seed.
     centre_y = spawn.y if arms == "both" else config.robot_description.arms[arms].base[1]
     targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y)
+    targets = moved(targets, layout.structure_shift, layout.structure_turn)
     order = arrange(targets) if arms == "both" else single_arm(targets, arms)
     return Plan(spec, arms, spawn, order)

@@ -88,9 +88,18 @@ class BrickCustody:
         for slot in self.untouched:
             self._note_idle(slot)
 
-    def gripped(self, arm: Arm, brick: int) -> None:
-        """The arm closed on the brick lying on the spot, for build-order place `brick`."""
+    def notice_taken(self) -> None:
+        """The brick offered on the spot no longer lies there: whoever took it (or knocked it
+        off), the spot is free for the next."""
         slot = self.spawner.current
+        if slot is not None and not self.spawner.rests_on_spot(self.data, slot, now=True):
+            self.reached(slot)
+            self.spawner.taken(slot)
+
+    def gripped(self, arm: Arm, brick: int) -> None:
+        """The arm closed on the brick last offered on the spot, for build-order place
+        `brick`."""
+        slot = self.spawner.offered
         assert slot is not None
         self.spawner.taken(slot)
         self.slot_of[brick] = slot

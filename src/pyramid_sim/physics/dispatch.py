@@ -4,6 +4,9 @@ advanced through them; an arm waits at the shared zone's edge while it may not e
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
+
+import mujoco
 
 from ..choices import Arm
 from ..config import SimConfig
@@ -38,8 +41,10 @@ class ArmDispatch:
         spawner: Spawner,
         tcp: dict[str, Pose],
         zones: dict[str, Zone],
+        data: mujoco.MjData | None = None,
     ) -> None:
         self.plan, self.config, self.spawner, self.zones = plan, config, spawner, zones
+        self.data = data  # where a brick on the spot lies: a pick re-aims at it
         self.robot = config.robot_description
         queues = (plan.arm_order("left"), plan.arm_order("right"))
         self._reach_seen: dict[tuple[Task, Task], bool] = {}
@@ -181,12 +186,35 @@ class ArmDispatch:
         if step is not None and step.name == "standby" and self._may_go(arm, runner.steps[1]):
             runner.cut_short()  # let in on the way: straight on from here
         if runner.busy and not self.held(arm):
+            step = runner.current
+            if self.spawner.jitter and step is not None and step.needs_brick and not runner.started:
+                self._aim_at_brick(arm)
             done = runner.tick(self.config.motion.control_dt, ik_error)
             if done is not None:
                 on_done(arm, done, self.task_of[arm])
                 if not runner.busy and not self.scheduler.finished:
                     self.scheduler.complete(arm)
         return runner.pose
+
+    def _aim_at_brick(self, arm: Arm) -> None:
+        """Re-aim a pick about to start at the brick as it lies on the spot (an imprecise
+        feeder sets it off the nominal spot): its moves shifted by the brick's offset and
+        turned to its yaw. A precise feeder's brick lies at the nominal spot: nothing to do."""
+        slot = self.spawner.current
+        if slot is None or self.data is None:
+            return
+        lies = self.spawner.lies_at(self.data, slot)
+        runner, nominal = self.runners[arm], self.plan.spawn
+        dx, dy = lies.x - nominal.x, lies.y - nominal.y
+        yaw = grasp_yaw(lies.yaw, self.robot.arms[arm].yaw_reference)
+        picks = ("hover", "approach", "servo", "retract")
+        steps = []
+        for k, step in enumerate(runner.steps):
+            if k < 5 and step.name in picks and step.pose is not None:
+                pose = step.pose.moved(dx, dy)
+                step = replace(step, pose=pose if step.name == "retract" else pose.with_yaw(yaw))
+            steps.append(step)
+        runner.load(steps)
 
     def dropped(self, arm: Arm, brick: int) -> None:
         """The arm lost its brick: fingers open, off to clear, the brick back in its queue."""

@@ -62,7 +62,10 @@ class BuildLoop:
         return lambda: self.ik.error(arm)[0]
 
     # --- one control step, in parts --------------------------------------------------------
-    def _feed_spot(self) -> None:
+    def feed_spot(self) -> None:
+        """The feeder's turn, whoever drives the arms: a brick taken off the spot frees it, and
+        an empty, clear spot gets the next brick while the structure needs one."""
+        self.custody.notice_taken()
         if self.spawner.current is None and self.custody.needs_brick():
             slot = self.custody.feed_spot()
             if slot is not None and self.hooks.on_spawn is not None:
@@ -163,7 +166,7 @@ class BuildLoop:
         tells the schedule where the arms are and advances each arm's primitive (the pose it
         commands is `dispatch.runners[arm].pose`, the gap `.gap`). False once every brick is
         placed and has settled."""
-        self._feed_spot()
+        self.feed_spot()  # as the last control step left it: a no-op but for the first
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
             return False
@@ -180,12 +183,14 @@ class BuildLoop:
 
     def apply(self, command: np.ndarray) -> str | None:
         """One control step of physics towards `command` (ramped across its substeps), then
-        the bricks' custody and the checks that stop a build: the reason it stopped, if it
-        did."""
+        the bricks' custody, the checks that stop a build and the feeder: the reason it
+        stopped, if it did."""
         if self._step_physics(command):
             return warning_reason(self.data)
         self._keep_custody()
-        return self._stop_reason()
+        reason = self._stop_reason()
+        self.feed_spot()
+        return reason
 
     def finish(self, failure: str | None, wall: float) -> Measurements:
         """The measurements of the build as it stands, `failure` the reason it stopped early."""

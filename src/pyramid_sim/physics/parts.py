@@ -120,7 +120,8 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     custody = BrickCustody(data, handles, spawner, len(plan.bricks), config)
     start_at_clear_poses(model, data, handles, ik, config)
     zones = schedule_zones(config.schedule, plan, config)
-    dispatch = ArmDispatch(plan, config, spawner, {a: ik.tcp_pose(a) for a in c.ARMS}, zones)
+    tcp = {a: ik.tcp_pose(a) for a in c.ARMS}
+    dispatch = ArmDispatch(plan, config, spawner, tcp, zones, data)
     return BuildParts(
         plan=plan,
         config=config,

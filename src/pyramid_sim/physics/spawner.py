@@ -39,12 +39,14 @@ class Spawner:
         self.volume = model.geom(c.SPAWN_VOLUME).id
         self.arm_geoms = [g for a in c.ARMS for g in arm_geoms(model, robot.arms[a])]
         self._fromto = np.zeros(6)
+        self._rot = np.zeros(9)
         self.jitter = jitter
         self.rng = np.random.default_rng(seed)
         self.handles = handles
         self.body = handles.brick_body
         self.next_slot = 0
         self.current: int | None = None  # slot on the spawn spot, not yet taken
+        self.offered: int | None = None  # slot last set on the spot (taken or not)
 
     @property
     def remaining(self) -> int:
@@ -78,12 +80,21 @@ class Spawner:
                 return False
         return True
 
-    def spot_offset(self, data: mujoco.MjData, slot: int) -> tuple[float, float, float, float]:
+    def spot_offset(
+        self, data: mujoco.MjData, slot: int, now: bool = False
+    ) -> tuple[float, float, float, float]:
         """How far the brick in `slot` lies from the spot as spawned: across (m), up or down
-        (m), its tilt and its turn (rad)."""
-        body = self.body[slot]
-        offset = data.xpos[body] - self.spawn.position
-        rot = data.xmat[body].reshape(3, 3)
+        (m), its tilt and its turn (rad). As of the last physics step's kinematics, or `now`
+        from its joint (a brick just set on the spot has not been through a step yet)."""
+        if now:
+            q = self.handles.brick_qpos[slot]
+            offset = data.qpos[q : q + 3] - self.spawn.position
+            mujoco.mju_quat2Mat(self._rot, data.qpos[q + 3 : q + 7])
+            rot = self._rot.reshape(3, 3)
+        else:
+            body = self.body[slot]
+            offset = data.xpos[body] - self.spawn.position
+            rot = data.xmat[body].reshape(3, 3)
         return (
             math.hypot(offset[0], offset[1]),
             abs(float(offset[2])),
@@ -91,10 +102,17 @@ class Spawner:
             symmetric_yaw_error(yaw_of(rot), self.spawn.yaw),
         )
 
-    def rests_on_spot(self, data: mujoco.MjData, slot: int) -> bool:
+    def lies_at(self, data: mujoco.MjData, slot: int) -> Pose:
+        """Where the brick in `slot` lies now (from its joint): its centre and yaw."""
+        q = self.handles.brick_qpos[slot]
+        mujoco.mju_quat2Mat(self._rot, data.qpos[q + 3 : q + 7])
+        x, y, z = (float(v) for v in data.qpos[q : q + 3])
+        return Pose(x, y, z, yaw_of(self._rot.reshape(3, 3)))
+
+    def rests_on_spot(self, data: mujoco.MjData, slot: int, now: bool = False) -> bool:
         """Whether the brick in `slot` lies on the spot as spawned (a dropped brick that fell
-        back where it was picked can simply be picked again)."""
-        across, height, tilt, turn = self.spot_offset(data, slot)
+        back where it was picked can simply be picked again); `now` as `spot_offset`'s."""
+        across, height, tilt, turn = self.spot_offset(data, slot, now)
         return bool(
             across <= self.jitter * math.sqrt(2) + ON_SPOT_XY
             and height <= ON_SPOT_Z
@@ -120,7 +138,7 @@ class Spawner:
 
     def put_back(self, slot: int) -> None:
         """The brick in `slot` lies on the spot again: it is the one to pick next."""
-        self.current = slot
+        self.current = self.offered = slot
 
     def spawn_next(self, data: mujoco.MjData) -> int:
         """Teleport the next parked brick onto the spot, at rest; returns its slot."""
@@ -134,5 +152,5 @@ class Spawner:
             yaw_quaternion(yaw),
         )
         self.next_slot += 1
-        self.current = slot
+        self.current = self.offered = slot
         return slot
