@@ -15,7 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .choices import ArmChoice
+from .choices import DEFAULT_VARIATION, ArmChoice
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .core.structures import StructureSpec
@@ -169,6 +169,7 @@ RECORD_KEYWORDS = (
     "fps",
     "cameras",
     "image_size",
+    "variation",
     "randomize",
     "workers",
     "backend",
@@ -188,6 +189,7 @@ def record(
     fps: int = 25,
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist"),
     image_size: tuple[int, int] = (224, 224),
+    variation: str = DEFAULT_VARIATION,
     randomize: tuple[str, ...] = (),
     workers: int = 1,
     backend: str = "process",
@@ -198,7 +200,8 @@ def record(
 ) -> Recorded:
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
-    `image_size` (height, width), each episode's `randomize` parts drawn from its seed;
+    `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
+    layout or full: learning/variation.py) with its `randomize` parts;
     `workers` episodes at once, in processes here or as Ray tasks (`backend="ray"`, on the
     cluster at `ray_address` or a Ray started here). Episodes already in `out` are kept and not
     run again.
@@ -215,7 +218,9 @@ def record(
         fps,
         tuple(cameras),
         tuple(image_size),  # type: ignore[arg-type]
+        variation,
         tuple(randomize),
+        True,
         workers,
         backend,
         ray_address,

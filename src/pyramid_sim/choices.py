@@ -18,14 +18,19 @@ SCHEDULES: tuple[Schedule, ...] = get_args(Schedule)
 ROBOT_NAMES: tuple[RobotName, ...] = get_args(RobotName)
 CAMERAS: tuple[Camera, ...] = get_args(Camera)
 BACKENDS: tuple[Backend, ...] = get_args(Backend)
+# How much one learning episode differs from the next (learning/variation.py).
+VARIATIONS = ("fixed", "layout", "full")
+DEFAULT_VARIATION = "layout"
 
 __all__ = [
+    "DEFAULT_VARIATION",
     "ARMS",
     "ARM_CHOICES",
     "BACKENDS",
     "CAMERAS",
     "ROBOT_NAMES",
     "SCHEDULES",
+    "VARIATIONS",
     "Arm",
     "ArmChoice",
     "Backend",

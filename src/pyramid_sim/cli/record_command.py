@@ -6,6 +6,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from ..choices import DEFAULT_VARIATION as DEFAULT_LEVEL
+from ..choices import VARIATIONS as LEVELS
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
@@ -51,7 +53,8 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "--fps",
         type=whole("fps", "10, 20, 25, 50 or 100"),
         default=25,
-        help="frames a second kept of the 100 Hz control: 10, 20, 25, 50 or 100 (default 25)",
+        help="frames a second, the environment's step rate (of the 100 Hz control): 10, 20, 25, "
+        "50 or 100 (default 25)",
     )
     p.add_argument(
         "--cameras",
@@ -66,6 +69,14 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         default=(224, 224),
         metavar="H[xW]",
         help="each camera's pixels, even (default 224)",
+    )
+    p.add_argument(
+        "--variation",
+        default=DEFAULT_LEVEL,
+        choices=LEVELS,
+        help="how episodes differ: fixed (DE NIRO's layout), layout (the feed spot, the "
+        "structure's place and turn drawn per episode) or full (the layout and every "
+        f"randomization) (default {DEFAULT_LEVEL})",
     )
     p.add_argument(
         "--randomize",
@@ -125,6 +136,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             cameras=cameras,
             image_size=args.image_size,
             on_frame=on_frame,
+            variation=args.variation,
             randomize=_names(args.randomize),
             workers=args.workers,
             backend=args.backend,

@@ -1,6 +1,12 @@
 """The environment's `action_mode="ee"`: each arm's tool-pose change and finger gap, turned
 into the joint command by the build's own IK, with its joint, speed, acceleration and
-collision limits."""
+collision limits.
+
+The action space is what the robot can follow: an environment step moves a target at most as
+far as the build's own free moves go in that time (the hand's speed and turn rate), and a
+target never runs ahead of the tool by more than `LEASH` (`TURN_LEASH`), so holding an action
+at its bound cannot wind the IK up against the arm's reach.
+"""
 
 from __future__ import annotations
 
@@ -14,9 +20,9 @@ from ..physics import names as c
 from ..physics.loop import BuildLoop
 from .layout import Layout
 
-MAX_STEP = 0.01  # m a control step along each axis: 1 m/s, above any free move's speed
-MAX_TURN = 0.05  # rad a control step: 5 rad/s, above any hand's turn rate
 FIELDS = ("dx", "dy", "dz", "dyaw", "gripper")
+LEASH = 0.03  # m a target may lead the tool centre, along each axis
+TURN_LEASH = 0.2  # rad a target's yaw may lead the hand's
 
 
 def _wrap(angle: float) -> float:
@@ -25,15 +31,20 @@ def _wrap(angle: float) -> float:
 
 class EndEffectorControl:
     """Actions of (dx, dy, dz, dyaw, gripper gap) per arm, left first, moving each arm's
-    tool-centre target from where it was aimed the step before."""
+    tool-centre target from where it was aimed the step before, across `steps` control steps
+    of `control_dt` each."""
 
-    def __init__(self, layout: Layout) -> None:
+    def __init__(
+        self, layout: Layout, speed: float, turn_rate: float, control_dt: float, steps: int
+    ) -> None:
         self.gaps = [i for i, name in enumerate(layout.names) if name.endswith("/gripper")]
+        self.steps = steps
+        reach, turn = speed * control_dt * steps, turn_rate * control_dt * steps
         low, high = [], []
         for gap in self.gaps:
-            low += [-MAX_STEP] * 3 + [-MAX_TURN, layout.low[gap]]
-            high += [MAX_STEP] * 3 + [MAX_TURN, layout.high[gap]]
-        self.space = spaces.Box(np.array(low), np.array(high), dtype=np.float64)
+            low += [-reach] * 3 + [-turn, layout.low[gap]]
+            high += [reach] * 3 + [turn, layout.high[gap]]
+        self.space = spaces.Box(np.array(low), np.array(high), dtype=np.float32)
         self.names = tuple(f"{arm}/{f}" for arm in c.ARMS for f in FIELDS)
         self.targets: dict[str, Pose] = {}
 
@@ -42,22 +53,28 @@ class EndEffectorControl:
         self.targets = {arm: loop.ik.tcp_pose(arm) for arm in c.ARMS}
 
     def command(self, loop: BuildLoop, action: np.ndarray) -> np.ndarray:
-        """The joint command for `action`: the IK aimed at the moved targets and stepped once
+        """The joint command for one control step of `action` (a share of the environment
+        step's move): the IK aimed at the moved targets, kept on their leash, and stepped once
         (mink.NoSolutionFound if it has no motion within the limits)."""
+        share = 1.0 / self.steps
         for k, arm in enumerate(c.ARMS):
-            dx, dy, dz, dyaw, _ = action[5 * k : 5 * k + 5]
-            t = self.targets[arm]
-            self.targets[arm] = Pose(t.x + dx, t.y + dy, t.z + dz, _wrap(t.yaw + dyaw))
+            dx, dy, dz, dyaw, _ = action[5 * k : 5 * k + 5] * share
+            t, tool = self.targets[arm], loop.ik.tcp_pose(arm)
+            self.targets[arm] = Pose(
+                float(np.clip(t.x + dx, tool.x - LEASH, tool.x + LEASH)),
+                float(np.clip(t.y + dy, tool.y - LEASH, tool.y + LEASH)),
+                float(np.clip(t.z + dz, tool.z - LEASH, tool.z + LEASH)),
+                tool.yaw + float(np.clip(_wrap(t.yaw + dyaw - tool.yaw), -TURN_LEASH, TURN_LEASH)),
+            )
             loop.ik.set_target(arm, self.targets[arm])
         loop.ik.step()
         command = loop.command().copy()
         command[self.gaps] = action[[4, 9]]
         return command
 
-    def expert(self, loop: BuildLoop) -> np.ndarray | None:
-        """The scripted builder's next move as such an action; None once it is done."""
-        if not loop.expert_targets():
-            return None
+    def expert(self, loop: BuildLoop) -> np.ndarray:
+        """The scripted builder's move, where its primitives aim each arm now, as such an
+        action (the environment clips it to the space)."""
         action: list[float] = []
         for arm in c.ARMS:
             runner, t = loop.dispatch.runners[arm], self.targets[arm]

@@ -24,19 +24,20 @@ PRIMITIVES = (
     "clear",
     "standby",
 )
-CONTROL_HZ = 100  # the build's control rate: a dataset's fps divides it
 
 
 @dataclass(frozen=True)
 class Frame:
-    """What a dataset keeps of one frame: the observation before the action, the action,
-    and the reward and end that followed it (summed over the control steps it spans)."""
+    """What a dataset keeps of one frame (one environment step): the observation before the
+    action, the action, and the reward, end and success that followed it."""
 
     state: np.ndarray  # float32, the layout's order
+    environment: np.ndarray  # float32: every magazine brick's pose, brick by brick
     action: np.ndarray  # float32
     images: dict[str, np.ndarray]  # camera -> H x W x 3 uint8
     reward: float
     done: bool
+    success: bool
     primitive: tuple[int, int]  # per arm, left first: an index into PRIMITIVES
     brick: tuple[int, int]  # per arm: the brick (build order) its task handles, -1 for none
 
@@ -63,45 +64,33 @@ def _doing(env: BuildEnv) -> tuple[tuple[int, int], tuple[int, int]]:
 
 
 def expert_episode(
-    env: BuildEnv, seed: int, fps: int, cameras: tuple[str, ...], on_frame: Callable[[Frame], Any]
+    env: BuildEnv, seed: int, cameras: tuple[str, ...], on_frame: Callable[[Frame], Any]
 ) -> EpisodeEnd:
-    """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame every
-    CONTROL_HZ / fps control steps; the last frame is marked done."""
-    every = CONTROL_HZ // fps
+    """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame each
+    environment step (the environment steps at the dataset's rate); the last is done."""
     obs, _ = env.reset(seed=seed)
-    step = frames = 0
-    pending: Frame | None = None
-    reward = 0.0
+    frames = 0
     while True:
         action = env.expert_action()
-        if step % every == 0:
-            if pending is not None:
-                on_frame(pending)
-                frames += 1
-            primitive, brick = _doing(env)
-            pending = Frame(
-                obs["state"].astype(np.float32),
+        primitive, brick = _doing(env)  # what the expert's action is for
+        state = obs["state"].astype(np.float32)
+        environment = obs["bricks"].astype(np.float32).ravel()
+        images = env.images(cameras) if cameras else {}
+        obs, reward, terminated, truncated, info = env.step(action)
+        done = terminated or truncated
+        on_frame(
+            Frame(
+                state,
+                environment,
                 action.astype(np.float32),
-                env.images(cameras) if cameras else {},
-                0.0,
-                False,
+                images,
+                float(reward),
+                done,
+                bool(info["is_success"]),
                 primitive,
                 brick,
-            )
-            reward = 0.0
-        obs, r, terminated, truncated, info = env.step(action)
-        reward += r
-        assert pending is not None
-        pending = Frame(
-            pending.state,
-            pending.action,
-            pending.images,
-            reward,
-            terminated or truncated,
-            pending.primitive,
-            pending.brick,
+            )  # fmt: skip
         )
-        step += 1
-        if terminated or truncated:
-            on_frame(pending)
-            return EpisodeEnd(frames + 1, info["is_success"], info["failure"], info["result"])
+        frames += 1
+        if done:
+            return EpisodeEnd(frames, info["is_success"], info["failure"], info["result"])

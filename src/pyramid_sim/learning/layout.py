@@ -17,6 +17,8 @@ from ..physics.handles import SceneHandles
 from ..robots import RobotDescription
 
 BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
+FPS_CHOICES = (10, 20, 25, 50, 100)  # a dataset's frame rates, an environment's step rates
+DEFAULT_FPS = 25
 
 
 @dataclass(frozen=True)
@@ -80,11 +82,56 @@ def camera_names(robot: RobotDescription) -> dict[str, str]:
     return named
 
 
-def check_cameras(cameras: tuple[str, ...], robot: RobotDescription) -> None:
-    """ConfigError for a camera that is not one of `camera_names`, or one named twice."""
+def check_cameras(cameras: tuple[str, ...], robot: RobotDescription) -> tuple[str, ...]:
+    """The cameras as a tuple; ConfigError for a camera that is not one of `camera_names`,
+    one named twice, or a single name where a sequence of them is asked."""
     known = camera_names(robot)
+    if isinstance(cameras, str):
+        raise ConfigError(
+            f"cameras: {cameras!r} is one name, not a sequence of them; accepted a tuple of "
+            f"{', '.join(known)}"
+        )
+    cameras = tuple(cameras)
     for camera in cameras:
         if camera not in known:
             raise ConfigError(f"cameras: unknown {camera!r}; accepted {', '.join(known)}")
     if len(set(cameras)) != len(cameras):
         raise ConfigError(f"cameras: {', '.join(cameras)} names one twice; accepted each once")
+    return cameras
+
+
+def control_steps(fps: int, control_dt: float) -> int:
+    """The build's control steps in one step at `fps` (a dataset's frame, an environment's
+    step); ConfigError unless `fps` is one of FPS_CHOICES and divides the control rate."""
+    steps = 1.0 / (fps * control_dt) if fps in FPS_CHOICES else 0.0
+    if isinstance(fps, bool) or steps < 1.0 - 1e-9 or abs(steps - round(steps)) > 1e-9:
+        raise ConfigError(
+            f"fps: {fps!r}; accepted {', '.join(map(str, FPS_CHOICES))} (a divisor of the "
+            f"build's {1.0 / control_dt:g} Hz control)"
+        )
+    return int(round(steps))
+
+
+def check_image_size(size: tuple[int, int]) -> tuple[int, int]:
+    """(height, width) as two whole numbers; ConfigError unless both are even, 16 to 1080
+    high and 16 to 1920 wide."""
+    try:
+        height, width = (int(v) for v in size)
+        whole = all(int(v) == v for v in size)
+    except (TypeError, ValueError):
+        height = width = 0
+        whole = False
+    if not (
+        whole and 16 <= height <= 1080 and 16 <= width <= 1920 and height % 2 == width % 2 == 0
+    ):
+        raise ConfigError(
+            f"image size: {size!r}; accepted (height, width), even, 16 to 1080 high and 16 to "
+            "1920 wide"
+        )
+    return height, width
+
+
+def check_seed(seed: int) -> None:
+    """ConfigError unless `seed` is a whole number from 0 to 2**32 - 1."""
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**32:
+        raise ConfigError(f"seed: {seed!r} is out of range; accepted 0 to 2**32 - 1")

@@ -25,7 +25,7 @@ class PlacementWatch:
         self.tolerances = tolerances
         self._lin_vel = np.array([[v, v + 1, v + 2] for v in h.brick_dofs])
         self._xy = brick_index(h)[:, :2]
-        self.placed: set[int] = set()
+        self.placed: dict[int, int] = {}  # build-order index -> slot of the brick resting there
 
     @property
     def count(self) -> int:
@@ -51,7 +51,7 @@ class PlacementWatch:
                 q = h.brick_qpos[slot]
                 errors = placement_errors(d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], pose)
                 if within(self.tolerances, *errors):
-                    self.placed.add(target.index)
+                    self.placed[target.index] = int(slot)
                     newly += 1
                     break
         return newly

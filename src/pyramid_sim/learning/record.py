@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..config import MotionConfig
 from ..errors import ConfigError
 from ..output.files import write_atomic
 from ..output.video import signals_held
@@ -22,10 +23,11 @@ from ..sweep.grid import check_backend
 from ..version import __version__
 from . import lerobot_format as fmt
 from .env import BuildEnv
-from .episode import CONTROL_HZ, PRIMITIVES, Frame, expert_episode
-from .layout import camera_names, check_cameras
+from .episode import PRIMITIVES, Frame, expert_episode
+from .layout import BRICK_FIELDS, camera_names, check_cameras, check_image_size, control_steps
 from .lerobot_meta import write_meta
 from .staging import STAGING, land, staged
+from .variation import DEFAULT_LEVEL, check_level
 
 RECORDS = "meta/pyramid_sim"
 TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
@@ -43,7 +45,9 @@ class RecordConfig:
     fps: int = 25
     cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
     image_size: tuple[int, int] = (224, 224)
+    variation: str = DEFAULT_LEVEL  # how episodes differ (learning/variation.py)
     randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
+    limit_commands: bool = True  # the environment's: commands within the joints' limits
     workers: int = 1  # episodes filmed at once, each in a process of its own
     backend: str = "process"  # or ray: the episodes as Ray tasks
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
@@ -51,17 +55,9 @@ class RecordConfig:
     def __post_init__(self) -> None:
         if not 1 <= self.episodes <= 100_000:
             raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
-        if self.fps not in (10, 20, 25, 50, 100):
-            raise ConfigError(
-                f"fps: {self.fps}; accepted 10, 20, 25, 50 or 100 (a divisor of the build's "
-                f"{CONTROL_HZ} Hz control)"
-            )
-        height, width = self.image_size
-        if not (16 <= height <= 1080 and 16 <= width <= 1920 and height % 2 == width % 2 == 0):
-            raise ConfigError(
-                f"image size: {height}x{width}; accepted even sizes, 16 to 1080 high and 16 to "
-                "1920 wide"
-            )
+        control_steps(self.fps, MotionConfig().control_dt)
+        check_image_size(self.image_size)
+        check_level(self.variation)
         if not 1 <= self.workers <= 64:
             raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
         check_backend(self.backend, self.ray_address)
@@ -81,18 +77,48 @@ class Recorded:
     failed: tuple[int, ...]  # episodes whose build did not succeed (they are kept)
 
 
+def make_env(config: RecordConfig) -> BuildEnv:
+    """The environment a recording's episodes run in, stepping at its frame rate."""
+    return BuildEnv(
+        config.structure,
+        variation=config.variation,
+        fps=config.fps,
+        limit_commands=config.limit_commands,
+        image_size=config.image_size,
+        randomize=config.randomize,
+        **config.options,
+    )
+
+
+def check_episodes_differ(config: RecordConfig, jitter_mm: float) -> None:
+    """ConfigError for a recording whose episodes would all be the same: more than one at
+    the `fixed` level with nothing drawn from the seed (no randomization, no spawn jitter)."""
+    if config.episodes > 1 and config.variation == "fixed" and not config.randomize:
+        if jitter_mm == 0.0:
+            raise ConfigError(
+                f"episodes: {config.episodes} episodes at variation fixed, with no "
+                "randomization and no spawn jitter, would all be the same; accepted 1 episode "
+                "there, or variation layout or full"
+            )
+
+
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     """The dataset's per-frame features, from the environment's layout."""
     names = env.layout.names
     height, width = config.image_size
+    bricks = tuple(
+        f"brick{slot}.{field}" for slot in range(env.layout.bricks) for field in BRICK_FIELDS
+    )
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
+        "observation.environment_state": fmt.Feature("float32", (len(bricks),), bricks),
         "action": fmt.Feature("float32", (len(names),), names),
     }
     for camera in config.cameras:
         found[f"observation.images.{camera}"] = fmt.Feature("video", (height, width, 3))
     found["next.reward"] = fmt.Feature("float32", (1,))
     found["next.done"] = fmt.Feature("bool", (1,))
+    found["next.success"] = fmt.Feature("bool", (1,))
     for arm in ("left", "right"):
         found[f"primitive.{arm}"] = fmt.Feature("int64", (1,))  # an index into PRIMITIVES
         found[f"brick.{arm}"] = fmt.Feature("int64", (1,))  # build order, -1 for none
@@ -102,9 +128,11 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
 def _frame_values(frame: Frame, cameras: tuple[str, ...]) -> dict[str, Any]:
     values: dict[str, Any] = {
         "observation.state": frame.state,
+        "observation.environment_state": frame.environment,
         "action": frame.action,
         "next.reward": frame.reward,
         "next.done": frame.done,
+        "next.success": frame.success,
         "primitive.left": frame.primitive[0],
         "primitive.right": frame.primitive[1],
         "brick.left": frame.brick[0],
@@ -140,10 +168,9 @@ def record(
     out: Path, config: RecordConfig, on_frame: Callable[[int, int], Any] | None = None
 ) -> Recorded:
     """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame."""
-    env = BuildEnv(
-        config.structure, image_size=config.image_size, randomize=config.randomize, **config.options
-    )
+    env = make_env(config)
     check_cameras(config.cameras, env.config.robot_description)
+    check_episodes_differ(config, env.config.layout.spawn_jitter_mm)
     feats = features(env, config)
     robot = env.config.robot_description.name
     spec = env.plan.spec
@@ -205,7 +232,9 @@ def _dataset_extra(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
             "size": dict(spec.size),
             "primitives": list(PRIMITIVES),
             "first_seed": config.first_seed,
-            "randomize": list(config.randomize),
+            "variation": config.variation,
+            "randomize": list(env.randomize),
+            "limit_commands": config.limit_commands,
             "cameras": {c: n for c, n in named.items() if c in config.cameras},
         }
     }
@@ -220,10 +249,17 @@ def _check_same_recording(
 ) -> None:
     """ConfigError if `out` holds episodes of another structure, rate or features."""
     for index, rec in records.items():
-        if rec["task"] != task or rec["fps"] != config.fps or rec["features"] != list(feats):
+        variation = rec.get("config", {}).get("variation", config.variation)
+        if (
+            rec["task"] != task
+            or rec["fps"] != config.fps
+            or rec["features"] != list(feats)
+            or variation != config.variation
+        ):
             raise ConfigError(
                 f"out: {str(out)!r} holds episodes of another recording (episode {index}: "
-                f"{rec['task']!r} at {rec['fps']} fps); accepted a new folder or the same "
+                f"{rec['task']!r} at {rec['fps']} fps, variation {variation}); accepted a new "
+                "folder or the same "
                 "recording's"
             )
 
@@ -246,9 +282,7 @@ def film_episode(
             on_frame(files.episode, frames)
 
     try:
-        end = expert_episode(
-            env, config.first_seed + files.episode, config.fps, config.cameras, keep
-        )
+        end = expert_episode(env, config.first_seed + files.episode, config.cameras, keep)
         return end, files.close()
     except BaseException:
         files.abort()

@@ -47,16 +47,11 @@ _WORKER_ENV: dict[str, Any] = {}
 
 def film_in_worker(config: Any, episode: int, out: Path) -> dict[str, Any]:
     """A worker process's episode (a pool's or Ray's), its environment made once per process."""
-    from .env import BuildEnv
+    from .record import make_env
 
     if "env" not in _WORKER_ENV:
         os.environ.setdefault("OMP_NUM_THREADS", "1")
-        _WORKER_ENV["env"] = BuildEnv(
-            config.structure,
-            image_size=config.image_size,
-            randomize=config.randomize,
-            **config.options,
-        )
+        _WORKER_ENV["env"] = make_env(config)
     return film_staged(config, _WORKER_ENV["env"], episode, out)
 
 

@@ -49,9 +49,10 @@ class BuildLoop:
         self._next_frame = 0.0
 
     @classmethod
-    def of(cls, plan: Plan, config: SimConfig) -> BuildLoop:
-        """A loop with parts freshly made for `plan` (a new compiled scene)."""
-        return cls(make_parts(plan, config))
+    def of(cls, plan: Plan, config: SimConfig, model: mujoco.MjModel | None = None) -> BuildLoop:
+        """A loop with parts freshly made for `plan` (on a new compiled scene, or `model`: see
+        `make_parts`)."""
+        return cls(make_parts(plan, config, model))
 
     # --- what the loop reads ----------------------------------------------------------------
     def step_of(self, arm: Arm) -> Step | None:

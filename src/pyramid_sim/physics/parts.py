@@ -15,6 +15,7 @@ import numpy as np
 from ..choices import Schedule
 from ..config import SimConfig
 from ..core.plan import Plan
+from ..core.poses import Pose
 from ..core.primitives import clear_pose
 from ..core.zone import Zone, overlap_zones, shared_zone
 from . import names as c
@@ -24,7 +25,7 @@ from .dispatch import ArmDispatch
 from .handles import SceneHandles
 from .ik import DualArmIK
 from .monitor import StepMonitor, joint_limits
-from .scene import build_scene
+from .scene import build_scene, place_spawn
 from .spawner import Spawner
 from .zone_watch import ZoneWatch
 
@@ -100,10 +101,14 @@ def start_at_clear_poses(
     mujoco.mj_forward(model, data)
 
 
-def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
+def make_parts(plan: Plan, config: SimConfig, model: mujoco.MjModel | None = None) -> BuildParts:
     """A freshly compiled scene for the plan (spare bricks in the magazine replace dropped
-    ones that cannot be picked again) and its parts."""
-    model = build_scene(config, len(plan.bricks) + config.spare_bricks).model
+    ones that cannot be picked again) and its parts; or the parts on `model`, a scene compiled
+    for `scene_key(config)`, its spawn spot placed for this plan."""
+    if model is None:
+        model = build_scene(config, len(plan.bricks) + config.spare_bricks).model
+    else:
+        place_spawn(model, config)
     data = mujoco.MjData(model)
     handles = SceneHandles(model, config.robot_description, len(plan.bricks) + config.spare_bricks)
     ik = DualArmIK(config)
@@ -120,7 +125,7 @@ def make_parts(plan: Plan, config: SimConfig) -> BuildParts:
     custody = BrickCustody(data, handles, spawner, len(plan.bricks), config)
     start_at_clear_poses(model, data, handles, ik, config)
     zones = schedule_zones(config.schedule, plan, config)
-    tcp = {a: ik.tcp_pose(a) for a in c.ARMS}
+    tcp: dict[str, Pose] = {a: ik.tcp_pose(a) for a in c.ARMS}
     dispatch = ArmDispatch(plan, config, spawner, tcp, zones, data)
     return BuildParts(
         plan=plan,

@@ -7,13 +7,13 @@ bricks' friction, as MuJoCo gives a contact the larger of its two geoms'.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import mujoco
 import numpy as np
 
-from ..config import SimConfig
+from ..config import LayoutConfig, SimConfig
 from ..core.poses import yaw_quaternion
 from ..resources import ASSETS
 from ..robots import RobotDescription
@@ -107,6 +107,33 @@ def _place_table(spec: mujoco.MjSpec, top_z: float) -> None:
     bottom = top_z - 2 * half  # the underside of the top
     base.size = [base.size[0], base.size[1], (bottom - FLOOR_Z) / 2]
     base.pos = [0.0, 0.0, (bottom + FLOOR_Z) / 2 - (top_z - half)]
+
+
+def place_spawn(model: mujoco.MjModel, config: SimConfig) -> None:
+    """The spawn marker and volume where `config`'s layout puts them, written into a compiled
+    scene as `build_spec` places them: a scene compiled once serves every layout."""
+    layout, brick = config.layout, config.brick
+    x, y = layout.spawn_xy
+    turn = yaw_quaternion(layout.spawn_yaw)
+    site = model.site("spawn_marker").id
+    model.site_pos[site] = [x, y, layout.table_top_z + 0.0005]
+    model.site_quat[site] = turn
+    volume = model.geom(c.SPAWN_VOLUME).id
+    model.geom_pos[volume] = [x, y, layout.table_top_z + brick.height / 2]
+    model.geom_quat[volume] = turn
+
+
+def scene_key(config: SimConfig) -> SimConfig:
+    """What a compiled scene is made from: the settings less the spawn spot's place (which
+    `place_spawn` moves), the structure's place and the seed (which it does not hold)."""
+    layout = replace(
+        config.layout,
+        spawn_xy=LayoutConfig.spawn_xy,
+        spawn_yaw=LayoutConfig.spawn_yaw,
+        structure_shift=LayoutConfig.structure_shift,
+        structure_turn=LayoutConfig.structure_turn,
+    )
+    return replace(config, layout=layout, seed=0)
 
 
 def build_scene(config: SimConfig, n_bricks: int) -> Scene:

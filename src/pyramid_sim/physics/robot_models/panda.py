@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -68,25 +69,41 @@ def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) ->
 
 def _add_visual_meshes(spec: mujoco.MjSpec) -> None:
     """Each link's visual meshes, one a colour, where its collision mesh is: drawn only, no
-    contact and no mass (the URDF's inertials stay the links' own)."""
+    contact and no mass (the URDF's inertials stay the links' own). The fingers collide as
+    boxes, not a mesh: their visual meshes go in the finger frames as the URDF places them
+    (the right finger's turned half round z), so a wrist camera sees the fingers."""
     parts = json.loads((VISUALS / "parts.json").read_text())
     for geom in [g for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH]:
-        for file, rgba in parts.get(geom.meshname, ()):
-            mesh = f"visual_{Path(file).stem}"
-            if spec.mesh(mesh) is None:
-                spec.add_mesh(name=mesh, file=str(VISUALS / file))
-            geom.parent.add_geom(
-                type=mujoco.mjtGeom.mjGEOM_MESH,
-                meshname=mesh,
-                pos=geom.pos,
-                quat=geom.quat,
-                contype=0,
-                conaffinity=0,
-                group=VISUAL_GROUP,
-                rgba=rgba,
-                density=0,
-                mass=0,
-            )
+        _add_visual(spec, geom.parent, parts.get(geom.meshname, ()), geom.pos, geom.quat)
+    for finger, quat in FINGER_VISUALS.items():
+        _add_visual(spec, spec.body(finger), parts["finger"], [0.0, 0.0, 0.0], quat)
+
+
+# The finger bodies and their visual meshes' orientation in them (the URDF's <visual> origin).
+FINGER_VISUALS = {
+    "panda_leftfinger": [1.0, 0.0, 0.0, 0.0],
+    "panda_rightfinger": [0.0, 0.0, 0.0, 1.0],
+}
+
+
+def _add_visual(spec: mujoco.MjSpec, body: mujoco.MjsBody, parts: Any, pos: Any, quat: Any) -> None:
+    """A part's visual meshes (file, colour) on `body` at `pos`, `quat`: drawn only."""
+    for file, rgba in parts:
+        mesh = f"visual_{Path(file).stem}"
+        if spec.mesh(mesh) is None:
+            spec.add_mesh(name=mesh, file=str(VISUALS / file))
+        body.add_geom(
+            type=mujoco.mjtGeom.mjGEOM_MESH,
+            meshname=mesh,
+            pos=pos,
+            quat=quat,
+            contype=0,
+            conaffinity=0,
+            group=VISUAL_GROUP,
+            rgba=rgba,
+            density=0,
+            mass=0,
+        )
 
 
 def _fit_fingers(spec: mujoco.MjSpec, arm: ArmDescription, robot: RobotDescription) -> None:
