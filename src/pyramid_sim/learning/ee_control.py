@@ -5,7 +5,8 @@ collision limits.
 The action space is what the robot can follow: an environment step moves a target at most as
 far as the build's own free moves go in that time (the hand's speed and turn rate), and a
 target never runs ahead of the tool by more than `LEASH` (`TURN_LEASH`), so holding an action
-at its bound cannot wind the IK up against the arm's reach.
+at its bound cannot wind the IK up against the arm's reach, and never lower than a grip on a
+brick lying on the table, so it cannot drive the hand into the table.
 """
 
 from __future__ import annotations
@@ -18,11 +19,15 @@ from gymnasium import spaces
 from ..core.poses import Pose
 from ..physics import names as c
 from ..physics.loop import BuildLoop
+from ..physics.reach import plan_poses
 from .layout import Layout
 
 FIELDS = ("dx", "dy", "dz", "dyaw", "gripper")
-LEASH = 0.03  # m a target may lead the tool centre, along each axis
-TURN_LEASH = 0.2  # rad a target's yaw may lead the hand's
+LEASH = 0.01  # m a target may lead the tool centre, along each axis
+TURN_LEASH = 0.05  # rad a target's yaw may lead the hand's
+SHARE = 0.75  # of the hand's speed and turn rate an action moves a target at most
+MARGIN = 0.08  # m beyond the expert's poses, each way, a target may go
+TURN_MARGIN = 0.3  # rad beyond the expert's yaws
 
 
 def _wrap(angle: float) -> float:
@@ -35,22 +40,43 @@ class EndEffectorControl:
     of `control_dt` each."""
 
     def __init__(
-        self, layout: Layout, speed: float, turn_rate: float, control_dt: float, steps: int
+        self,
+        layout: Layout,
+        speed: float,
+        turn_rate: float,
+        control_dt: float,
+        steps: int,
+        floor: float,
     ) -> None:
+        self.floor = floor  # m: the lowest a target goes, a grip on a brick lying on the table
         self.gaps = [i for i, name in enumerate(layout.names) if name.endswith("/gripper")]
         self.steps = steps
-        reach, turn = speed * control_dt * steps, turn_rate * control_dt * steps
+        reach, turn = (SHARE * v * control_dt * steps for v in (speed, turn_rate))
         low, high = [], []
         for gap in self.gaps:
             low += [-reach] * 3 + [-turn, layout.low[gap]]
             high += [reach] * 3 + [turn, layout.high[gap]]
-        self.space = spaces.Box(np.array(low), np.array(high), dtype=np.float32)
+        self.space = spaces.Box(
+            np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32
+        )
         self.names = tuple(f"{arm}/{f}" for arm in c.ARMS for f in FIELDS)
         self.targets: dict[str, Pose] = {}
+        self.box: dict[str, tuple[np.ndarray, np.ndarray]] = {}
 
     def reset(self, loop: BuildLoop) -> None:
-        """Aim each arm where its tool centre is."""
+        """Aim each arm where its tool centre is; each arm's targets are kept within the box
+        (x, y, z, yaw) of every pose the expert's build of this plan goes through, `MARGIN`
+        (`TURN_MARGIN`) wider: where the arm works well inside its reach and its wrist's
+        range, whichever way the hand comes."""
         self.targets = {arm: loop.ik.tcp_pose(arm) for arm in c.ARMS}
+        poses: dict[str, list[Pose]] = {arm: [self.targets[arm]] for arm in c.ARMS}
+        for arm, _, pose in plan_poses(loop.plan, loop.config):
+            poses[arm].append(pose)
+        self.box = {}
+        for arm, seen in poses.items():
+            values = np.array([[p.x, p.y, p.z, p.yaw] for p in seen])
+            margin = np.array([MARGIN, MARGIN, MARGIN, TURN_MARGIN])
+            self.box[arm] = (values.min(axis=0) - margin, values.max(axis=0) + margin)
 
     def command(self, loop: BuildLoop, action: np.ndarray) -> np.ndarray:
         """The joint command for one control step of `action` (a share of the environment
@@ -60,12 +86,15 @@ class EndEffectorControl:
         for k, arm in enumerate(c.ARMS):
             dx, dy, dz, dyaw, _ = action[5 * k : 5 * k + 5] * share
             t, tool = self.targets[arm], loop.ik.tcp_pose(arm)
-            self.targets[arm] = Pose(
-                float(np.clip(t.x + dx, tool.x - LEASH, tool.x + LEASH)),
-                float(np.clip(t.y + dy, tool.y - LEASH, tool.y + LEASH)),
-                float(np.clip(t.z + dz, tool.z - LEASH, tool.z + LEASH)),
-                tool.yaw + float(np.clip(_wrap(t.yaw + dyaw - tool.yaw), -TURN_LEASH, TURN_LEASH)),
+            yaw = tool.yaw + float(np.clip(_wrap(t.yaw + dyaw - tool.yaw), -TURN_LEASH, TURN_LEASH))
+            aim = np.clip(
+                [t.x + dx, t.y + dy, t.z + dz, yaw],
+                [tool.x - LEASH, tool.y - LEASH, tool.z - LEASH, -np.inf],
+                [tool.x + LEASH, tool.y + LEASH, tool.z + LEASH, np.inf],
             )
+            low, high = self.box[arm]
+            x, y, z, yaw = (float(v) for v in np.clip(aim, low, high))
+            self.targets[arm] = Pose(x, y, max(self.floor, z), yaw)
             loop.ik.set_target(arm, self.targets[arm])
         loop.ik.step()
         command = loop.command().copy()

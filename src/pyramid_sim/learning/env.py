@@ -106,8 +106,14 @@ class BuildEnv(gymnasium.Env):
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         motion = self.config.hand_motion
+        floor = self.config.layout.table_top_z + self.config.brick.height / 2 + robot.grasp_height
         self.ee = EndEffectorControl(
-            self.layout, motion.speed, motion.turn_rate, motion.control_dt, self.control_steps
+            self.layout,
+            motion.speed,
+            motion.turn_rate,
+            motion.control_dt,
+            self.control_steps,
+            floor,
         )
         self.ee.reset(self._loop)
         self._limiter = CommandLimiter(*joint_limits(self.layout, robot), self.dt)
