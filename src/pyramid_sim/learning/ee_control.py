@@ -73,10 +73,10 @@ class EndEffectorControl:
         for arm, _, pose in plan_poses(loop.plan, loop.config):
             poses[arm].append(pose)
         self.box = {}
-        for arm, seen in poses.items():
+        for side, seen in poses.items():
             values = np.array([[p.x, p.y, p.z, p.yaw] for p in seen])
             margin = np.array([MARGIN, MARGIN, MARGIN, TURN_MARGIN])
-            self.box[arm] = (values.min(axis=0) - margin, values.max(axis=0) + margin)
+            self.box[side] = (values.min(axis=0) - margin, values.max(axis=0) + margin)
 
     def command(self, loop: BuildLoop, action: np.ndarray) -> np.ndarray:
         """The joint command for one control step of `action` (a share of the environment
