@@ -44,7 +44,11 @@ def _register_env() -> None:
     except ImportError:  # gymnasium is a dependency; a trimmed install still imports
         return
     if ENV_ID not in gymnasium.registry:
-        gymnasium.register(id=ENV_ID, entry_point="pyramid_sim.learning.env:BuildEnv")
+        # The step limit of the defaults: max_sim_time (600 s) at 25 steps a second. An
+        # environment made with another fps or time limit passes its own max_episode_steps.
+        gymnasium.register(
+            id=ENV_ID, entry_point="pyramid_sim.learning.env:BuildEnv", max_episode_steps=15_000
+        )
 
 
 _register_env()

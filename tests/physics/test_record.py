@@ -50,6 +50,14 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
         feature = info["features"][f"observation.images.{camera}"]
         assert feature["dtype"] == "video" and feature["shape"] == [*SIZE, 3]
     assert info["features"]["observation.state"]["shape"] == [16]
+    # A state-only policy learns from where the bricks are; lerobot's sims carry next.success.
+    environment = info["features"]["observation.environment_state"]
+    assert environment["shape"] == [4 * 7] and environment["names"][:2] == ["brick0.x", "brick0.y"]
+    assert info["features"]["next.success"]["dtype"] == "bool"
+    data = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
+    assert data["next.success"][-1] is True and not any(data["next.success"][:-1])
+    first = np.array(data["observation.environment_state"][0]).reshape(4, 7)
+    assert abs(first[0, 2] - 0.11) < 1e-3  # the first brick lies on the spot, 11 cm up
     tasks = pq.read_table(root / "meta/tasks.parquet").to_pylist()
     assert tasks == [{"task_index": 0, "task": tasks[0]["task"]}] and "pyramid" in tasks[0]["task"]
 
@@ -166,10 +174,11 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
 @pytest.mark.parametrize(
     "argv, words",
     [
-        (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50 or 100"),
+        (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
         (["--cameras", "nose"], "cameras: unknown 'nose'; accepted overview, front"),
         (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
-        (["--image-size", "15"], "image size: 15x15; accepted even sizes"),
+        (["--image-size", "15"], "image size: (15, 15); accepted (height, width), even"),
+        (["--episodes", "2", "--variation", "fixed"], "would all be the same"),
         (["--workers", "0"], "workers: 0 is out of range; accepted 1 to 64"),
         (["--backend", "slurm"], "backend: unknown 'slurm'; accepted process, ray"),
         (["--ray-address", "auto"], "ray address: only with --backend ray"),
@@ -197,7 +206,7 @@ def test_each_episode_keeps_its_randomization(tmp_path):
     ]
     assert recorded.episodes == 2
     draws = [r["randomization"] for r in records]
-    assert all(set(d) == {"friction", "colours"} for d in draws) and draws[0] != draws[1]
+    assert all(set(d) == {"layout", "friction", "colours"} for d in draws) and draws[0] != draws[1]
     assert records[0]["result"]["inputs"]["settings"]["brick"]["friction"] == pytest.approx(
         draws[0]["friction"]
     )
@@ -272,3 +281,47 @@ def test_episodes_filmed_as_ray_tasks_make_the_serial_runs_dataset(dataset, tmp_
 def _frames(path):
     with av.open(str(path)) as video:
         return [frame.to_ndarray(format="rgb24").tobytes() for frame in video.decode(video=0)]
+
+
+@pytest.fixture(scope="module")
+def state_only(tmp_path_factory):
+    """Three episodes with the default options (the `layout` level) and no camera."""
+    root = tmp_path_factory.mktemp("state") / "d"
+    recorded = pyramid_sim.record(root, "pyramid-even", layers=1, episodes=3, cameras=())
+    return root, recorded
+
+
+def test_three_recorded_episodes_with_default_options_differ(state_only):
+    root, recorded = state_only
+    assert recorded.episodes == 3 and recorded.failed == ()
+    states = [
+        np.array(pq.read_table(root / f"data/chunk-000/file-{e:03d}.parquet")["observation.state"].to_pylist())
+        for e in range(3)
+    ]  # fmt: skip
+    for a in range(3):
+        for b in range(a + 1, 3):
+            n = min(len(states[a]), len(states[b]))
+            assert np.abs(states[a][:n] - states[b][:n]).max() > 0.05, (a, b)
+    info = json.loads((root / "meta/info.json").read_text())
+    assert "observation.images.overview" not in info["features"]
+
+
+def test_replaying_a_recorded_episodes_actions_builds_its_structure(state_only):
+    """The environment feeds the bricks and judges the placements, whoever drives it: the
+    recorded actions alone, at the same seed and rate, build the structure."""
+    import gymnasium
+
+    root, _ = state_only
+    record = json.loads((root / "meta/pyramid_sim/episode_000001.json").read_text())
+    actions = pq.read_table(root / "data/chunk-000/file-001.parquet")["action"].to_pylist()
+    env = gymnasium.make(pyramid_sim.ENV_ID, structure="pyramid-even", layers=1)
+    env.reset(seed=record["seed"])
+    placed = 0
+    for action in actions:
+        _, reward, terminated, truncated, info = env.step(np.array(action, dtype=np.float32))
+        placed += reward
+        if terminated or truncated:
+            break
+    assert terminated and info["is_success"] and placed == 2
+    assert info["result"]["bricks_placed"] == 2  # judged from where the bricks lie
+    env.close()
