@@ -16,7 +16,10 @@ ENV = pyramid_sim.ENV_ID
 
 
 def _env(parts, **extra):
-    return gymnasium.make(ENV, structure="pyramid", layers=1, randomize=parts, **extra).unwrapped
+    """At the `fixed` level: only the parts asked for are drawn."""
+    return gymnasium.make(
+        ENV, structure="pyramid", layers=1, randomize=parts, variation="fixed", **extra
+    ).unwrapped
 
 
 def test_the_draw_is_the_seeds_and_each_part_its_own():

@@ -155,11 +155,19 @@ class BuildEnv(gymnasium.Env):
         for them (once, while only the layout changes), its visual parts drawn in. No stall: a
         policy may take its time; the time limit truncates the episode."""
         drawn = rnd.draw(seed, self.randomize)
-        layout = var.draw_layout(seed, self.variation)
-        self.drawn = {"layout": layout, **drawn}
-        config = var.placed(rnd.physical(self.config, drawn), layout)
-        config = replace(config, seed=seed, stall_time=config.max_sim_time)
-        self.plan = self._plan(config)
+        physical = replace(
+            rnd.physical(self.config, drawn), seed=seed, stall_time=self.config.max_sim_time
+        )
+        for attempt in range(var.ATTEMPTS):  # a layout out of the arms' reach is drawn again
+            layout = var.draw_layout(seed, self.variation, attempt)
+            config = var.placed(physical, layout)
+            try:
+                self.plan = self._plan(config)
+                break
+            except ConfigError:
+                if attempt == var.ATTEMPTS - 1 or not layout:
+                    raise
+        self.drawn = {"layout": layout, **drawn} if layout else drawn
         key = scene_key(config)
         visual = any(part in drawn for part in rnd.VISUAL)
         if self._scene is None or self._scene[0] != key or visual:

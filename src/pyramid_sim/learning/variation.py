@@ -33,6 +33,7 @@ SPAWN_REGION = (0.03, 0.04)  # m either side of the seeds' spawn spot, in x and 
 SPAWN_TURN = math.radians(20.0)
 STRUCTURE_SHIFT = 0.05  # m either way in x and y
 STRUCTURE_TURN = math.radians(15.0)  # either way, about the footprint's centre
+ATTEMPTS = 20  # draws of a layout before a structure is refused as out of reach
 
 
 def check_level(level: str) -> str:
@@ -47,14 +48,17 @@ def randomized(level: str, parts: tuple[str, ...]) -> tuple[str, ...]:
     return PARTS if level == "full" else parts
 
 
-def draw_layout(seed: int, level: str) -> dict[str, Any]:
+def draw_layout(seed: int, level: str, attempt: int = 0) -> dict[str, Any]:
     """The layout of the episode of `seed` at `level` (empty at `fixed`): plain numbers, as
-    the episode's record keeps them."""
+    the episode's record keeps them. A draw that puts a pose out of the arms' reach is drawn
+    again (`attempt` 1, 2, ...: the environment tries up to ATTEMPTS), so the region a
+    structure is drawn in is the part of the ranges its every pose reaches."""
     if level == "fixed":
         return {}
-    rng = np.random.default_rng([seed, STREAM])
+    rng = np.random.default_rng([seed, STREAM, attempt] if attempt else [seed, STREAM])
     dx, dy = (float(v) for v in rng.uniform(-1.0, 1.0, 2) * SPAWN_REGION)
     return {
+        "attempt": attempt,
         "spawn_offset": [dx, dy],
         "spawn_turn": float(rng.uniform(-SPAWN_TURN, 0.0)),
         "structure_shift": [float(v) for v in rng.uniform(-STRUCTURE_SHIFT, STRUCTURE_SHIFT, 2)],
