@@ -27,7 +27,7 @@ from .episode import PRIMITIVES, Frame, expert_episode
 from .layout import BRICK_FIELDS, camera_names, check_cameras, check_image_size, control_steps
 from .lerobot_meta import write_meta
 from .staging import STAGING, land, staged
-from .variation import DEFAULT_LEVEL, check_level
+from .variation import DEFAULT_LEVEL, check_differ, check_level
 
 RECORDS = "meta/pyramid_sim"
 TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
@@ -88,18 +88,6 @@ def make_env(config: RecordConfig) -> BuildEnv:
         randomize=config.randomize,
         **config.options,
     )
-
-
-def check_episodes_differ(config: RecordConfig, jitter_mm: float) -> None:
-    """ConfigError for a recording whose episodes would all be the same: more than one at
-    the `fixed` level with nothing drawn from the seed (no randomization, no spawn jitter)."""
-    if config.episodes > 1 and config.variation == "fixed" and not config.randomize:
-        if jitter_mm == 0.0:
-            raise ConfigError(
-                f"episodes: {config.episodes} episodes at variation fixed, with no "
-                "randomization and no spawn jitter, would all be the same; accepted 1 episode "
-                "there, or variation layout or full"
-            )
 
 
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
@@ -170,7 +158,9 @@ def record(
     """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame."""
     env = make_env(config)
     check_cameras(config.cameras, env.config.robot_description)
-    check_episodes_differ(config, env.config.layout.spawn_jitter_mm)
+    check_differ(
+        config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
+    )
     feats = features(env, config)
     robot = env.config.robot_description.name
     spec = env.plan.spec

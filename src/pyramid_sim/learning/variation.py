@@ -84,3 +84,14 @@ def placed(config: SimConfig, drawn: dict[str, Any]) -> SimConfig:
             structure_turn=layout.structure_turn + drawn["structure_turn"],
         ),
     )
+
+
+def check_differ(episodes: int, level: str, parts: tuple[str, ...], jitter_mm: float) -> None:
+    """ConfigError for a recording whose episodes would all be the same: more than one at the
+    `fixed` level with nothing drawn from the seed (no randomization, no spawn jitter)."""
+    if episodes > 1 and level == "fixed" and not parts and jitter_mm == 0.0:
+        raise ConfigError(
+            f"episodes: {episodes} episodes at variation fixed, with no randomization and no "
+            "spawn jitter, would all be the same; accepted 1 episode there, or variation "
+            "layout or full"
+        )
