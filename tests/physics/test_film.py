@@ -2,6 +2,7 @@
 geometry, a spawn marker that lines up with the brick, a lab with no black in any frame, and a
 magazine of spare bricks out of every camera's sight, at rest until a brick is spawned."""
 
+import itertools
 import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")  # before MuJoCo's first import in this process
@@ -164,3 +165,105 @@ def test_each_wrist_camera_has_its_brick_in_view_from_approach_to_release(robot)
 
     loop.run(BuildHooks(on_step=watch))
     assert all(n > 100 for n in seen.values()), seen
+
+
+def _sky_coloured(model: mujoco.MjModel) -> None:
+    """The skybox painted magenta, a colour nothing else in the scene has."""
+    for t in range(model.ntex):
+        if model.tex_type[t] == mujoco.mjtTexture.mjTEXTURE_SKYBOX:
+            n = model.tex_width[t] * model.tex_height[t] * model.tex_nchannel[t]
+            pixels = model.tex_data[model.tex_adr[t] : model.tex_adr[t] + n]
+            pixels.reshape(-1, model.tex_nchannel[t])[:, :3] = [255, 0, 255]
+
+
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_the_room_fills_every_scene_cameras_frame_however_the_camera_is_moved(robot):
+    """No sky behind the scene from the overview, front and top cameras, where they stand and
+    moved as far as the randomization moves them (3 cm and 3 degrees about each axis)."""
+    loop = _loop(robot)
+    model, data = loop.model, loop.data
+    _sky_coloured(model)
+    moves = [np.zeros(6)] + [np.array(s) for s in itertools.product((-1.0, 1.0), repeat=6)][::7]
+    with HeadlessRenderer(model, 96, 72, "egl") as renderer:
+        for camera in CAMERAS:
+            cam = model.camera(camera).id
+            pos, quat = model.cam_pos[cam].copy(), model.cam_quat[cam].copy()
+            for move in moves:
+                turn, moved = np.zeros(4), np.zeros(4)
+                mujoco.mju_euler2Quat(turn, np.radians(3.0 * move[3:]), "xyz")
+                mujoco.mju_mulQuat(moved, quat, turn)
+                data.cam_xpos[cam] = pos + 0.03 * move[:3]
+                mujoco.mju_quat2Mat(data.cam_xmat[cam], moved)
+                renderer.update_scene(data, camera)
+                frame = renderer.render().astype(int)
+                sky = (frame[..., 0] > 150) & (frame[..., 1] < 90) & (frame[..., 2] > 150)
+                assert not sky.any(), (camera, move, int(sky.sum()))
+
+
+def test_a_bricks_faces_are_framed_by_a_darker_border():
+    """Every face of a brick is drawn with its texture: white inside, a darker strip at its
+    edges, so bricks of one colour side by side or stacked are told apart."""
+    model = build_scene(SimConfig(), 2).model
+    for slot in range(2):
+        t = model.tex(f"brick0{slot}/surface").id
+        h, w, c = model.tex_height[t], model.tex_width[t], model.tex_nchannel[t]
+        pixels = model.tex_data[model.tex_adr[t] : model.tex_adr[t] + h * w * c]
+        pixels = pixels.reshape(h, w, c).astype(int)
+        assert (pixels[h // 4 : -h // 4, w // 4 : -w // 4] == 255).all()
+        for edge in (pixels[0], pixels[-1], pixels[:, 0], pixels[:, -1]):
+            assert (edge < 160).all()
+        geom = model.geom(f"brick0{slot}/geom").id
+        assert model.mat_texid[model.geom_matid[geom]].max() == t
+
+
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_each_wrist_camera_sees_both_fingers_and_the_brick_between_them_at_the_grip(robot):
+    """As each hand has closed on its first brick, its wrist camera's image holds both fingers
+    and the brick (counted in a segmentation render: which geom drew each pixel)."""
+    loop = _loop(robot)
+    model = loop.model
+    arms = loop.config.robot_description.arms
+    # a finger: the body its joint moves and what hangs below it (Baxter's paddle tip)
+    fingers = {
+        a: [
+            subtree(model, model.body(int(model.joint(j).bodyid[0])).name)
+            for j in arms[a].finger_joints
+        ]
+        for a in arms
+    }
+    bricks = set(loop.handles.brick_body)
+    last: dict[str, str | None] = {a: None for a in arms}
+    counted: dict[str, list[int]] = {}
+    renderer = HeadlessRenderer(model, 160, 120, "egl")
+    renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = True
+    renderer.scene.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = True
+
+    def watch(d):
+        for arm in arms:
+            step = loop.step_of(arm)
+            name = step.name if step is not None else None
+            if last[arm] == "grip" and name != "grip" and arm not in counted:
+                renderer.update_scene(d, arms[arm].wrist_camera)
+                frame = renderer.render().astype(np.int64)
+                ids = frame[..., 0] + (frame[..., 1] << 8) + (frame[..., 2] << 16) - 1
+                counts = [0, 0, 0]  # pixels of the one finger, the other, a brick
+                for seg, n in zip(*np.unique(ids[ids >= 0], return_counts=True)):
+                    geom = renderer.scene.geoms[seg]
+                    if geom.objtype != mujoco.mjtObj.mjOBJ_GEOM:
+                        continue
+                    body = int(model.geom_bodyid[geom.objid])
+                    for i, finger in enumerate(fingers[arm]):
+                        counts[i] += int(n) if body in finger else 0
+                    if body in bricks:
+                        counts[2] += int(n)
+                counted[arm] = counts
+            last[arm] = name
+
+    try:
+        loop.run(BuildHooks(on_step=watch))
+    finally:
+        renderer.close()
+    assert set(counted) == set(arms), counted
+    for arm, (one, other, brick) in counted.items():
+        # of 19200 pixels: each finger at least 0.5 %, the brick at least a tenth
+        assert one > 100 and other > 100 and brick > 1920, (arm, counted[arm])

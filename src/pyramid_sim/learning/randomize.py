@@ -133,7 +133,9 @@ def visual(model: Any, data: Any, drawn: dict[str, Any]) -> None:
 
 def _draw_textures(model: Any, textures: dict[str, dict[str, Any]]) -> None:
     """Each drawn surface's texture pixels, around the texture's own mean tone, into the
-    model (a renderer made after this uploads them)."""
+    model (a renderer made after this uploads them). A brick's pattern is drawn around its
+    face's tone and shaded as its own texture is, so the darker border that frames each face
+    stays."""
     for t in range(model.ntex):
         name = model.tex(t).name
         key = "brick" if name.endswith("/surface") else name
@@ -142,9 +144,17 @@ def _draw_textures(model: Any, textures: dict[str, dict[str, Any]]) -> None:
         h, w, c = model.tex_height[t], model.tex_width[t], model.tex_nchannel[t]
         adr = model.tex_adr[t]
         pixels = model.tex_data[adr : adr + h * w * c].reshape(h, w, c)
-        base = pixels.reshape(-1, c).mean(axis=0) / 255.0
         look = textures[key]
         seed = look["seed"] + t  # every brick its own speckle of the one look
+        if key == "brick":
+            face = pixels.reshape(-1, c).max(axis=0).astype(float)
+            shade = pixels / np.maximum(face, 1.0)
+            drawn = texture_pixels(
+                look["pattern"], look["cells"], look["contrast"], seed, face / 255.0, h, w
+            )
+            pixels[:] = np.clip(drawn * shade, 0, 255).round().astype(np.uint8)
+            continue
+        base = pixels.reshape(-1, c).mean(axis=0) / 255.0
         pixels[:] = texture_pixels(
             look["pattern"], look["cells"], look["contrast"], seed, base, h, w
         )

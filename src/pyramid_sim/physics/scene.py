@@ -37,6 +37,8 @@ def brick_spec(config: SimConfig) -> mujoco.MjSpec:
     geom.size = [brick.length / 2, brick.width / 2, brick.height / 2]
     geom.mass = brick.mass
     geom.friction = [brick.friction, 0.005, 0.0001]
+    # by its absolute path, as a portable scene's XML needs (output/scene_files.py)
+    spec.texture("surface").file = str(ASSETS / "brick_surface.png")
     return spec
 
 

@@ -45,12 +45,17 @@ def robots_dir() -> Path:
     return Path(str(dist.locate_file("cmeel.prefix/share/example-robot-data/robots")))
 
 
-# The wrist camera, in the tool frame (z out of the hand, fingers closing along y): behind the
-# fingertips and off to the side the fingers do not close along, looking past them to a point
-# ahead, so the brick is in view from approach to release.
-WRIST_CAMERA_AT = (0.11, 0.0, -0.09)  # m
-WRIST_CAMERA_LOOKS_AT = (0.0, 0.0, 0.05)  # m
-WRIST_CAMERA_FOVY = 75.0  # degrees
+# The wrist camera, in the tool frame (z out of the hand, fingers closing along y, a held
+# brick's long axis along x): off to the side the fingers do not close along, 0.14 m out (past
+# the held brick's end, 0.096 m) and 0.10 m back from the tool centre, at the level of the
+# hand's underside, so the hand hides no more than the fingers' roots; it looks at a point
+# 2 cm ahead of the tool centre. Both fingers and their tips are in view, one either side of
+# the image's middle, with the brick between them from approach to release, and the table or
+# the structure beyond. Image right is the tool's +y, image up points ahead, away from the
+# hand (the hand's underside along the bottom edge).
+WRIST_CAMERA_AT = (0.14, 0.0, -0.10)  # m
+WRIST_CAMERA_LOOKS_AT = (0.0, 0.0, 0.02)  # m
+WRIST_CAMERA_FOVY = 65.0  # degrees
 
 
 def add_tool(body: mujoco.MjsBody, arm: ArmDescription) -> None:
