@@ -29,7 +29,8 @@ def learning_figures(spec: StructureSpec, robot: RobotName) -> dict[str, Any]:
     built = loop.run()
     build_rate = built.physics_steps / config.substeps / (time.perf_counter() - start)
     sizes: dict[str, Any] = dict(spec.size)
-    env = BuildEnv(spec.name, robot=robot, **sizes)
+    # The build's own layout, stepped at the datasets' rate: control steps a second compared.
+    env = BuildEnv(spec.name, robot=robot, variation="fixed", fps=RECORD_FPS, **sizes)
     env.reset(seed=0)
     steps, start = 0, time.perf_counter()
     while True:
@@ -37,11 +38,11 @@ def learning_figures(spec: StructureSpec, robot: RobotName) -> dict[str, Any]:
         steps += 1
         if terminated or truncated:
             break
-    env_rate = steps / (time.perf_counter() - start)
+    env_rate = steps * env.control_steps / (time.perf_counter() - start)
     env.close()
     figures: dict[str, Any] = {
         "build_control_steps_per_s": build_rate,
-        "env_steps_per_s": env_rate,
+        "env_steps_per_s": env_rate / env.control_steps,
         "env_to_build_ratio": env_rate / build_rate,
     }
     walls = {}
