@@ -249,9 +249,10 @@ class BuildEnv(gymnasium.Env):
 
 def episode_info(env: BuildEnv, failure: str | None, success: bool | None) -> dict[str, Any]:
     """The same keys after reset and every step; `result` (result.json's document) once
-    the episode has ended, None before."""
+    the episode has ended, empty before (a dict either way: a vector env gathers infos by
+    their type)."""
     loop = env.loop
-    result = None
+    result: dict[str, Any] = {}
     if env.ended:
         loop.custody.slot_of.update(
             {i: s for i, s in env.placing.placed.items() if i not in loop.custody.slot_of}
