@@ -1,19 +1,32 @@
 """For robot learning: the build as a Gymnasium environment (`env.BuildEnv`, registered as
-`pyramid_sim/Build-v0` when pyramid_sim is imported) and what it observes and commands
-(`layout`), the expert's episodes kept at a dataset's rate (`episode`), and recorded as LeRobot datasets
-(`record`, in the v3.0 layout of `lerobot_format` and `lerobot_meta`).
+`pyramid_sim/Build-v0` when pyramid_sim is imported), each episode drawn from its seed
+(`variation`, `randomize`, made by `episodes`; `layout_reach` says how large a structure every
+layout reaches), what it observes and commands (`layout`, `spaces`, `ee_control`, and the
+command limits and spline of `command_limits`), the scripted builder as a policy (`expert`),
+its episodes kept at a dataset's rate (`episode`) and recorded as LeRobot datasets (`record`,
+in the v3.0 layout of `lerobot_format` and `lerobot_meta`).
 
 Importing the package imports none of its modules (the environment needs MuJoCo); `__all__`
 names them.
 """
 
 __all__ = [
+    "command_limits",
+    "ee_control",
     "env",
     "episode",
+    "episodes",
+    "expert",
     "layout",
+    "layout_reach",
     "lerobot_format",
     "lerobot_meta",
     "outcome",
     "randomize",
+    "ray_staging",
     "record",
+    "spaces",
+    "staging",
+    "textures",
+    "variation",
 ]
