@@ -6,7 +6,7 @@ DE NIRO's own generators with its own numbers, public so a user can set a struct
 seed's; `pyramid` and `pyramid_even` are the resting targets built from them.
 """
 
-from .api import build, plan, record, settings, structure
+from .api import build, evaluate, plan, record, settings, structure
 from .config import (
     BrickConfig,
     GripperConfig,
@@ -34,6 +34,7 @@ from .params import PARAMS, Param
 from .version import __version__
 
 ENV_ID = "pyramid_sim/Build-v0"
+LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"  # learning/lerobot_env.py
 
 
 def _register_env() -> None:
@@ -49,12 +50,17 @@ def _register_env() -> None:
         gymnasium.register(
             id=ENV_ID, entry_point="pyramid_sim.learning.env:BuildEnv", max_episode_steps=15_000
         )
+    if LEROBOT_ENV_ID not in gymnasium.registry:  # lerobot's keys: its plugin passes the limit
+        gymnasium.register(
+            id=LEROBOT_ENV_ID, entry_point="pyramid_sim.learning.lerobot_env:make_lerobot_env"
+        )
 
 
 _register_env()
 
 __all__ = [
     "ENV_ID",
+    "LEROBOT_ENV_ID",
     "PARAMS",
     "STRUCTURES",
     "Action",
@@ -86,6 +92,7 @@ __all__ = [
     "create_coordinates_new",
     "make_plan",
     "plan",
+    "evaluate",
     "record",
     "pyramid",
     "pyramid_even",

@@ -15,7 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .choices import DEFAULT_VARIATION, ArmChoice
+from .choices import DEFAULT_VARIATION, EVAL_FIRST_SEED, ArmChoice
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .core.structures import StructureSpec
@@ -23,7 +23,8 @@ from .errors import ConfigError, MachineError
 from .output.result import BuildResult
 from .params import BY_NAME
 
-if TYPE_CHECKING:  # the recorder needs MuJoCo: imported when `record` runs
+if TYPE_CHECKING:  # the recorder and evaluation need MuJoCo: imported when they run
+    from .learning.evaluate import Evaluation
     from .learning.record import Recorded
 
 RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot", "schedule")
@@ -229,3 +230,51 @@ def record(
     from .learning.record import record as run
 
     return run(Path(out), settings_, on_frame)
+
+
+EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
+                     "on_episode", "arms")  # fmt: skip
+
+
+def evaluate(
+    policy: str = "expert",
+    name: str = "pyramid-even",
+    *,
+    out: str | Path | None = None,
+    arms: ArmChoice = "both",
+    variation: str = DEFAULT_VARIATION,
+    fps: int = 25,
+    episodes: int = 10,
+    seed: int = EVAL_FIRST_SEED,
+    video: int = 0,
+    max_steps: int | None = None,
+    on_episode: Any = None,
+    config: SimConfig | None = None,
+    **options: Any,
+) -> Evaluation:
+    """Score `policy` (expert, zero, random, `module:factory`, or a lerobot checkpoint folder)
+    on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
+    recordings, which start at 0) at `variation` and `fps`; with `out`, write
+    `out/evaluation.json` and film the first `video` episodes. `options` as for `build`.
+    Returns the `Evaluation` (its scores as evaluation.json has them)."""
+    config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
+    from .learning.evaluate import EvaluateConfig
+
+    sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
+    wanted = EvaluateConfig(
+        policy,
+        name,
+        {**sizes, "arms": arms, "config": config},
+        variation,
+        fps,
+        episodes,
+        seed,
+        video,
+        max_steps,
+    )
+    if video and out is None:
+        raise ConfigError("video: films need out; accepted a folder to write them in")
+    _prepare_gl(render=bool(video))
+    from .learning.evaluate import evaluate as run
+
+    return run(wanted, Path(out) if out is not None else None, on_episode)

@@ -21,9 +21,12 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 # How much one learning episode differs from the next (learning/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
+# The first seed an evaluation scores (recordings start at 0: the two never overlap).
+EVAL_FIRST_SEED = 100_000
 
 __all__ = [
     "DEFAULT_VARIATION",
+    "EVAL_FIRST_SEED",
     "ARMS",
     "ARM_CHOICES",
     "BACKENDS",

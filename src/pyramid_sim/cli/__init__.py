@@ -18,6 +18,7 @@ from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a
 from . import commands
+from .evaluate_command import add_evaluate_args, cmd_evaluate
 from .record_command import add_record_args, cmd_record
 from .sweep_args import add_sweep_args
 from .video_args import add_video_args
@@ -32,6 +33,7 @@ COMMANDS = {
     "reach": commands.cmd_reach,
     "scene": commands.cmd_scene,
     "record": cmd_record,
+    "evaluate": cmd_evaluate,
 }
 
 
@@ -70,6 +72,9 @@ def make_parser() -> a.Parser:
     )
     add_record_args(
         sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
+    )
+    add_evaluate_args(
+        sub.add_parser("evaluate", help="score a policy over held-out seeds: DIR/evaluation.json")
     )
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     a.add_robot_arg(reach)

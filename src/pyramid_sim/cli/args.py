@@ -143,8 +143,12 @@ def add_structure_args(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_physics_args(p: argparse.ArgumentParser) -> None:
-    """One flag per row of the parameter table, then the spawn jitter and its seed."""
+def add_physics_args(
+    p: argparse.ArgumentParser,
+    seed_default: int = 0,
+    seed_help: str = "of the spawn jitter (default 0)",
+) -> None:
+    """One flag per row of the parameter table, then the spawn jitter and the seed."""
     for param in PARAMS:
         p.add_argument(
             param.flag,
@@ -162,7 +166,7 @@ def add_physics_args(p: argparse.ArgumentParser) -> None:
         help="each spawned brick lands up to MM off the spot in x and y; accepted "
         "[0, 10] (default 0)",
     )
-    p.add_argument("--seed", type=whole("seed"), default=0, help="of the spawn jitter (default 0)")
+    p.add_argument("--seed", type=whole("seed"), default=seed_default, help=seed_help)
 
 
 def add_backend_args(p: argparse.ArgumentParser, what: str) -> None:

@@ -100,3 +100,33 @@ def segment_gap(
     if side(p, r, s) * side(q, r, s) < 0 and side(r, p, q) * side(s, p, q) < 0:
         return 0.0  # they cross
     return min(to_segment(p, r, s), to_segment(q, r, s), to_segment(r, p, q), to_segment(s, p, q))
+
+
+def footprint(pose: Pose, length: float, width: float) -> list[np.ndarray]:
+    """The corners, seen from above, of a brick lying at `pose` (its long axis along its yaw)."""
+    c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+    return [
+        np.array([pose.x + c * u - s * v, pose.y + s * u + c * v])
+        for u, v in ((length, width), (-length, width), (-length, -width), (length, -width))
+        for u, v in [(u / 2, v / 2)]
+    ]
+
+
+def footprint_gap(a: list[np.ndarray], b: list[np.ndarray]) -> float:
+    """The least distance in the plane between two convex footprints (corners in order); 0
+    where they overlap."""
+
+    def inside(point: np.ndarray, corners: list[np.ndarray]) -> bool:
+        signs = [
+            (q[0] - p[0]) * (point[1] - p[1]) - (q[1] - p[1]) * (point[0] - p[0])
+            for p, q in zip(corners, corners[1:] + corners[:1])
+        ]
+        return all(s >= 0 for s in signs) or all(s <= 0 for s in signs)
+
+    if inside(a[0], b) or inside(b[0], a):
+        return 0.0
+    edges_a = list(zip(a, a[1:] + a[:1]))
+    edges_b = list(zip(b, b[1:] + b[:1]))
+    return min(
+        segment_gap(list(p), list(q), list(r), list(s)) for p, q in edges_a for r, s in edges_b
+    )

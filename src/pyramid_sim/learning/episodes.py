@@ -11,8 +11,10 @@ from ..choices import ArmChoice
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
 from ..core.structures import StructureSpec
+from ..core.zone import footprint, footprint_gap
 from ..errors import ConfigError, UnreachableError
 from ..physics.loop import BuildLoop
+from ..physics.parts import SPOT_CLEARANCE
 from ..physics.reach import ReachChecker, require_reachable
 from ..physics.scene import build_scene, scene_key
 from . import randomize as rnd
@@ -41,11 +43,13 @@ class EpisodeMaker:
 
     def plan(self, config: SimConfig) -> Plan:
         """The plan for `config`'s layout, every pose checked by IK (ConfigError if one is out
-        of reach), with a reach checker kept for the robot and settings."""
+        of reach, or the structure stands where the feeder cannot set a brick), with a reach
+        checker kept for the robot and settings."""
         key = scene_key(config)
         if key not in self._checkers:
             self._checkers = {key: ReachChecker(config)}
         plan = make_plan(self.spec, config, self.arms)
+        check_spot_clear(plan, config)
         try:
             self._checkers[key].check(plan)
         except UnreachableError:  # refused in one line, with the largest size it reaches
@@ -79,3 +83,19 @@ class EpisodeMaker:
         loop = BuildLoop.of(plan, config, self.compiled)
         rnd.visual(loop.model, loop.data, drawn)
         return loop
+
+
+def check_spot_clear(plan: Plan, config: SimConfig) -> None:
+    """ConfigError if a target lies within the feeder's clearance (and `SPOT_MARGIN`) of the
+    spawn spot's brick: the feeder sets no brick beside one that near, and the build stalls."""
+    brick, jitter = config.brick, config.layout.spawn_jitter_mm / 1000.0
+    spot = footprint(plan.spawn, brick.length + 2 * jitter, brick.width + 2 * jitter)
+    need = SPOT_CLEARANCE + var.SPOT_MARGIN
+    for b in plan.bricks:
+        gap = footprint_gap(spot, footprint(b.target.pose, brick.length, brick.width))
+        if gap < need:
+            raise ConfigError(
+                f"layout: brick {b.index}'s target lies {gap * 1000:.0f} mm from the spawn "
+                f"spot's brick; accepted {need * 1000:.0f} mm or more (the feeder sets no brick "
+                "nearer)"
+            )

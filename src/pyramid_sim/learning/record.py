@@ -90,6 +90,12 @@ def make_env(config: RecordConfig) -> BuildEnv:
     )
 
 
+def task_text(env: BuildEnv) -> str:
+    """The task a recording's frames and an evaluation's policy are given, in words."""
+    spec, robot = env.plan.spec, env.config.robot_description.name
+    return TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
+
+
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     """The dataset's per-frame features, from the environment's layout."""
     names = env.layout.names
@@ -163,8 +169,7 @@ def record(
     )
     feats = features(env, config)
     robot = env.config.robot_description.name
-    spec = env.plan.spec
-    task = TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
+    task = task_text(env)
     extra = _dataset_extra(env, config)
     records = _records(out)
     _check_same_recording(out, records, task, config, feats)

@@ -33,6 +33,9 @@ SPAWN_REGION = (0.03, 0.04)  # m either side of the seeds' spawn spot, in x and 
 SPAWN_TURN = math.radians(20.0)
 STRUCTURE_SHIFT = 0.05  # m either way in x and y
 STRUCTURE_TURN = math.radians(15.0)  # either way, about the footprint's centre
+# m beyond the feeder's clearance a drawn structure keeps from the spot: an open hand picking
+# there is wider than the brick (at 1 cm a Panda's fingers struck the structure, 1 in 100)
+SPOT_MARGIN = 0.04
 ATTEMPTS = 20  # draws of a layout before a structure is refused as out of reach
 
 
@@ -50,8 +53,8 @@ def randomized(level: str, parts: tuple[str, ...]) -> tuple[str, ...]:
 
 def draw_layout(seed: int, level: str, attempt: int = 0) -> dict[str, Any]:
     """The layout of the episode of `seed` at `level` (empty at `fixed`): plain numbers, as
-    the episode's record keeps them. A draw that puts a pose out of the arms' reach is drawn
-    again (`attempt` 1, 2, ...: the environment tries up to ATTEMPTS), so the region a
+    the episode's record keeps them. A draw that puts a pose out of the arms' reach, or the
+    structure where the feeder sets no brick, is drawn again (`attempt` 1, 2, ...: the environment tries up to ATTEMPTS), so the region a
     structure is drawn in is the part of the ranges its every pose reaches."""
     if level == "fixed":
         return {}

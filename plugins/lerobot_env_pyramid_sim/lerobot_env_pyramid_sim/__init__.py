@@ -1,0 +1,79 @@
+"""pyramid_sim as a lerobot environment: `lerobot-eval --env.type=pyramid_sim
+--env.task=pyramid-even --env.layers=1 --policy.path=CHECKPOINT` evaluates a policy trained
+on a dataset `pyramid-sim record` wrote (the same features, the same names, the same rate).
+
+lerobot imports this package by itself (its distribution's name starts with lerobot_env_);
+the environment is pyramid_sim's `pyramid_sim/Lerobot-v0` (pyramid_sim.learning.lerobot_env).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from lerobot.configs import FeatureType, PolicyFeature
+from lerobot.envs.configs import EnvConfig
+from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
+
+import pyramid_sim
+
+SPARE_BRICKS = pyramid_sim.SimConfig().spare_bricks  # in the magazine beside the structure's
+
+
+@EnvConfig.register_subclass("pyramid_sim")
+@dataclass
+class PyramidSimEnv(EnvConfig):
+    """The task is a structure (pyramid, pyramid-even, wall, ...); `layers` its size, and the
+    rest as `pyramid-sim record` takes them. `episode_length` is the step limit, at `fps`."""
+
+    task: str | None = "pyramid-even"
+    layers: int = 1
+    robot: str = "panda"
+    variation: str = "layout"
+    fps: int = 25
+    episode_length: int = 2250  # 90 s at 25 fps: 30 s a brick and 30 s more for two bricks
+    cameras: tuple[str, ...] = ()  # as `record --cameras`: overview, front, top, *_wrist
+    observation_height: int = 224
+    observation_width: int = 224
+    features: dict[str, PolicyFeature] = field(default_factory=dict)
+    features_map: dict[str, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
+        self.features = {
+            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(16,)),
+            "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(16,)),
+            "environment_state": PolicyFeature(
+                type=FeatureType.ENV, shape=((bricks + SPARE_BRICKS) * 7,)
+            ),
+        }
+        self.features_map = {
+            ACTION: ACTION,
+            "agent_pos": OBS_STATE,
+            "environment_state": OBS_ENV_STATE,
+        }
+        for camera in self.cameras:
+            shape = (self.observation_height, self.observation_width, 3)
+            self.features[f"pixels/{camera}"] = PolicyFeature(type=FeatureType.VISUAL, shape=shape)
+            self.features_map[f"pixels/{camera}"] = f"{OBS_IMAGES}.{camera}"
+
+    @property
+    def package_name(self) -> str:
+        return "pyramid_sim"
+
+    @property
+    def gym_id(self) -> str:
+        return pyramid_sim.LEROBOT_ENV_ID
+
+    @property
+    def gym_kwargs(self) -> dict[str, Any]:
+        return {
+            "structure": self.task,
+            "layers": self.layers,
+            "robot": self.robot,
+            "variation": self.variation,
+            "fps": self.fps,
+            "cameras": tuple(self.cameras),
+            "image_size": (self.observation_height, self.observation_width),
+            "max_episode_steps": self.episode_length,
+        }

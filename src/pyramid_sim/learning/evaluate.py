@@ -1,0 +1,218 @@
+"""`pyramid-sim evaluate`: a policy scored over held-out seeds, as learners score policies on
+every peer. Episode i is `reset(seed=first_seed + i)`; evaluation seeds start at EVAL_SEED
+(100000) by default, recordings at 0, so the two never overlap for recordings of fewer than
+100000 episodes (`record` takes at most that many). `evaluation.json` holds the scores, the
+inputs and versions, and one row an episode."""
+
+from __future__ import annotations
+
+import platform
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from gymnasium.wrappers import TimeLimit
+
+from ..choices import EVAL_FIRST_SEED
+from ..config import MotionConfig
+from ..errors import ConfigError
+from ..output.files import atomic_path, write_json_atomic
+from ..version import __version__
+from .env import BuildEnv
+from .layout import check_seed, control_steps
+from .policies import make_policy
+from .scores import summary
+from .variation import DEFAULT_LEVEL, check_level
+
+SECONDS_PER_BRICK = 30.0  # of an episode's default time limit
+EVAL_SEED = EVAL_FIRST_SEED  # recordings start at 0 (`record --seed`)
+SPLIT = (
+    "evaluation seeds first_seed..first_seed+episodes-1 (default from 100000); recordings "
+    "use seeds from 0 (default), so they never overlap for recordings of fewer than 100000 "
+    "episodes"
+)
+
+
+@dataclass(frozen=True)
+class EvaluateConfig:
+    """What an evaluation is: the policy, the task (structure, size and settings as `build`
+    takes them, the variation and step rate), how many episodes from which seed, and how many
+    of the first are filmed."""
+
+    policy: str = "expert"
+    structure: str = "pyramid-even"
+    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
+    variation: str = DEFAULT_LEVEL
+    fps: int = 25
+    episodes: int = 10
+    first_seed: int = EVAL_SEED
+    videos: int = 0  # the first episodes filmed from the overview camera
+    max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
+
+    def __post_init__(self) -> None:
+        if not 1 <= self.episodes <= 100_000:
+            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
+        check_level(self.variation)
+        control_steps(self.fps, MotionConfig().control_dt)
+        check_seed(self.first_seed)
+        check_seed(self.first_seed + self.episodes - 1)
+        if self.max_steps is not None and not 1 <= self.max_steps <= 10_000_000:
+            raise ConfigError(f"max steps: {self.max_steps}; accepted 1 to 10000000")
+        if not 0 <= self.videos <= self.episodes:
+            raise ConfigError(
+                f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"
+            )
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """A finished evaluation: its scores (as evaluation.json has them) and where it is."""
+
+    path: Path | None
+    scores: dict[str, Any]
+
+    @property
+    def success_rate(self) -> float:
+        return float(self.scores["success_rate"])
+
+    def line(self) -> str:
+        """The summary line the command prints."""
+        s = self.scores
+        low, high = (100 * v for v in s["success_rate_95"])
+        where = f" -> {self.path}" if self.path is not None else ""
+        return (
+            f"evaluated: {s['policy']} {s['successes']}/{s['episodes']} successes "
+            f"({100 * s['success_rate']:.1f} %, 95 % interval {low:.1f}-{high:.1f}), "
+            f"{s['bricks_placed_mean']:.2f} of {s['bricks']} bricks placed on average{where}"
+        )
+
+
+def step_limit(bricks: int, fps: int) -> int:
+    """An episode's default step limit: 30 s a brick and 30 s more, at `fps` (the expert
+    takes 10-20 s a brick; docs/evaluation.md)."""
+    return int((SECONDS_PER_BRICK * bricks + SECONDS_PER_BRICK) * fps)
+
+
+def versions() -> dict[str, str]:
+    """The versions that produced an evaluation."""
+    import gymnasium
+    import mink
+    import mujoco
+
+    return {
+        "pyramid_sim": __version__,
+        "mujoco": mujoco.__version__,
+        "mink": getattr(mink, "__version__", "unknown"),
+        "gymnasium": gymnasium.__version__,
+        "numpy": np.__version__,
+        "python": platform.python_version(),
+    }
+
+
+def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str, Any]:
+    """One episode of `policy` from `reset(seed=seed)` in `env` (a BuildEnv, wrapped or
+    not): its row. An episode cut by a step limit fails for it."""
+    observation, _ = env.reset(seed=seed)
+    policy.reset()
+    steps, start = 0, time.perf_counter()
+    while True:
+        observation, _, terminated, truncated, info = env.step(policy.act(observation))
+        steps += 1
+        if film is not None:
+            film(env.render())
+        if terminated or truncated:
+            break
+    return {
+        "seed": seed,
+        "success": bool(info["is_success"]),
+        "bricks_placed": int(info["bricks_placed"]),
+        "failure": info["failure"] or (f"step limit: {steps} steps" if truncated else None),
+        "truncated": bool(truncated),
+        "steps": steps,
+        "sim_time_s": info["sim_time_s"],
+        "wall_time_s": time.perf_counter() - start,
+    }
+
+
+def evaluate(
+    config: EvaluateConfig,
+    out: Path | None = None,
+    on_episode: Callable[[dict[str, Any]], Any] | None = None,
+) -> Evaluation:
+    """Run the evaluation; with `out`, write `out/evaluation.json` (and the films,
+    `out/episode_<seed>.mp4`)."""
+    built = BuildEnv(
+        config.structure,
+        variation=config.variation,
+        fps=config.fps,
+        render_mode="rgb_array" if config.videos else None,
+        **config.options,
+    )
+    limit = config.max_steps or step_limit(len(built.plan.bricks), config.fps)
+    env = TimeLimit(built, max_episode_steps=limit)
+    policy = make_policy(config.policy, env)
+    rows = []
+    try:
+        for i in range(config.episodes):
+            seed = config.first_seed + i
+            if i < config.videos and out is not None:
+                rows.append(_filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps))
+            else:
+                rows.append(run_episode(env, policy, seed))
+            if on_episode is not None:
+                on_episode(rows[-1])
+    finally:
+        env.close()
+    scores = {
+        "policy": config.policy,
+        **summary(rows, len(built.plan.bricks)),
+        "protocol": {
+            "first_seed": config.first_seed,
+            "seeds": [config.first_seed, config.first_seed + config.episodes - 1],
+            "split": SPLIT,
+            "success": "every target holds a brick at rest within the build's tolerances",
+        },
+        "task": {
+            "structure": built.plan.spec.name,
+            "size": dict(built.plan.spec.size),
+            "robot": built.config.robot,
+            "variation": config.variation,
+            "fps": config.fps,
+            "limit_commands": built.limit_commands,
+            "max_steps": limit,
+        },
+        "inputs": {**asdict(config), "options": _plain(config.options)},
+        "settings": asdict(built.config),
+        "versions": versions(),
+        "rows": rows,
+    }
+    path = None
+    if out is not None:
+        path = out / "evaluation.json"
+        write_json_atomic(path, scores)
+    return Evaluation(path, scores)
+
+
+def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str, Any]:
+    """An episode filmed from the overview camera into `path`, a frame each step, streamed
+    into a file that lands whole or not at all."""
+    import imageio.v2 as imageio
+
+    rows: list[dict[str, Any]] = []
+
+    def film(tmp: Path) -> None:
+        writer: Any = imageio.get_writer(str(tmp), format="FFMPEG", fps=fps, macro_block_size=1)
+        with writer:
+            rows.append(run_episode(env, policy, seed, writer.append_data))
+
+    with atomic_path(path) as tmp:
+        film(tmp)
+    return rows[0]
+
+
+def _plain(options: dict[str, Any]) -> dict[str, Any]:
+    """The options as JSON takes them (a whole SimConfig as its fields)."""
+    return {k: asdict(v) if hasattr(v, "__dataclass_fields__") else v for k, v in options.items()}

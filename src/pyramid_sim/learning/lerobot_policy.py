@@ -1,0 +1,63 @@
+"""A policy trained with `lerobot-train` on a recorded dataset, driven in the environment as
+`lerobot-eval` drives it: the checkpoint's own pre- and post-processors (normalization) around
+`select_action`, on the CPU. Needs lerobot (and torch), which pyramid_sim does not depend on:
+it is imported here only, when a checkpoint folder is asked for."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ConfigError
+from .lerobot_env import lerobot_keys
+from .record import task_text
+
+
+class LerobotPolicy:
+    """The policy saved in `folder` (a checkpoint's pretrained_model: config.json and
+    model.safetensors), for the BuildEnv `env`."""
+
+    def __init__(self, folder: Path, env: Any) -> None:
+        if not (folder / "config.json").is_file():
+            raise ConfigError(
+                f"policy: {str(folder)!r} holds no config.json; accepted a lerobot checkpoint's "
+                "pretrained_model folder"
+            )
+        try:
+            from lerobot.configs.policies import PreTrainedConfig
+            from lerobot.envs.utils import preprocess_observation
+            from lerobot.policies import make_pre_post_processors
+            from lerobot.policies.factory import get_policy_class
+        except ImportError:
+            from .policies import lerobot_missing
+
+            raise lerobot_missing() from None
+        config = PreTrainedConfig.from_pretrained(str(folder))
+        config.device = "cpu"
+        self.policy = get_policy_class(config.type).from_pretrained(str(folder), config=config)
+        self.policy.eval()
+        self.pre, self.post = make_pre_post_processors(
+            policy_cfg=self.policy.config,
+            pretrained_path=str(folder),
+            preprocessor_overrides={"device_processor": {"device": "cpu"}},
+        )
+        self._to_tensors = preprocess_observation
+        self.task = task_text(env.unwrapped)
+
+    def reset(self) -> None:
+        self.policy.reset()  # an action chunk is not carried into the next episode
+
+    def act(self, observation: Any) -> np.ndarray:
+        import torch
+
+        batch = {
+            k: (np.expand_dims(v, 0) if k != "pixels" else {c: i[None] for c, i in v.items()})
+            for k, v in lerobot_keys(observation).items()
+        }
+        tensors = self._to_tensors(batch)
+        tensors["task"] = [self.task]
+        with torch.inference_mode():
+            action = self.post(self.policy.select_action(self.pre(tensors)))
+        return np.asarray(action.to("cpu").numpy()[0], dtype=np.float32)

@@ -1,0 +1,146 @@
+"""`evaluate` scores a policy over held-out seeds: the expert every episode, the bounds none,
+a user's factory and a checkpoint folder (refused clearly where lerobot is missing), with
+evaluation.json's fields and the seed split; and the environment under lerobot's keys
+matches what `record` writes."""
+
+import json
+import os
+
+import av
+import gymnasium
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+import pyramid_sim
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+TASK = {"layers": 1}  # the smallest task: two bricks, one per arm
+
+
+def test_the_expert_scores_every_episode_and_the_json_says_how(tmp_path):
+    evaluation = pyramid_sim.evaluate("expert", "pyramid-even", out=tmp_path, episodes=5, **TASK)
+    doc = json.loads((tmp_path / "evaluation.json").read_text())
+    assert evaluation.success_rate == 1.0 and doc["successes"] == 5
+    low, high = doc["success_rate_95"]
+    assert 0.5 < low < 0.6 and high == 1.0  # Wilson's interval at 5 of 5
+    assert doc["bricks_placed_mean"] == 2.0 and doc["bricks_placed_episodes"] == {
+        "0": 0,
+        "1": 0,
+        "2": 5,
+    }
+    assert doc["failures"] == {} and doc["task"]["variation"] == "layout"
+    assert (
+        doc["protocol"]["seeds"] == [100_000, 100_004]
+        and "never overlap" in (doc["protocol"]["split"])
+    )
+    assert [row["seed"] for row in doc["rows"]] == list(range(100_000, 100_005))
+    assert all(row["success"] and row["failure"] is None for row in doc["rows"])
+    assert doc["versions"]["pyramid_sim"] == pyramid_sim.__version__ and doc["versions"]["mujoco"]
+    assert doc["settings"]["robot"] == "panda" and doc["inputs"]["episodes"] == 5
+    assert evaluation.line().startswith("evaluated: expert 5/5 successes (100.0 %")
+
+
+@pytest.mark.parametrize("policy, kind", [("zero", "step limit"), ("random", None)])
+def test_the_bounds_score_nothing(policy, kind):
+    evaluation = pyramid_sim.evaluate(policy, "pyramid-even", episodes=2, max_steps=200, **TASK)
+    scores = evaluation.scores
+    assert evaluation.success_rate == 0.0 and scores["bricks_placed_mean"] == 0.0
+    assert sum(scores["failures"].values()) == 2  # each episode ended saying why
+    if kind is not None:
+        assert scores["failures"] == {kind: 2}
+
+
+def test_a_users_factory_is_a_policy():
+    """`module:factory`, called with the environment: here the library's own hold-still."""
+    evaluation = pyramid_sim.evaluate(
+        "pyramid_sim.learning.policies:HoldStill", "pyramid", layers=1, episodes=1, max_steps=20
+    )
+    assert evaluation.scores["rows"][0]["steps"] == 20
+    assert evaluation.scores["failures"] == {"step limit": 1}
+
+
+def test_the_first_episodes_are_filmed_a_frame_a_step(tmp_path):
+    evaluation = pyramid_sim.evaluate(
+        "expert", "pyramid", layers=1, out=tmp_path, episodes=2, video=1, max_steps=30
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["episode_100000.mp4", "evaluation.json"]
+    with av.open(str(tmp_path / "episode_100000.mp4")) as film:
+        frames = sum(1 for _ in film.decode(video=0))
+    assert frames == evaluation.scores["rows"][0]["steps"] == 30
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["--policy", "nope"], "policy: 'nope' is not one; accepted expert, zero, random"),
+        (["--policy", "no_such_module:f"], "policy: 'no_such_module:f' cannot be loaded"),
+        (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
+        (["--episodes", "2", "--video", "3"], "video: 3 episodes filmed; accepted 0 to the 2"),
+        (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
+        (["--variation", "wild"], "invalid choice: 'wild'"),
+        (["--max-steps", "0"], "max steps: 0; accepted 1 to 10000000"),
+    ],
+)
+def test_bad_evaluate_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
+    out = tmp_path / "never"
+    line = refused(
+        ["evaluate", "--structure", "pyramid", "--layers", "1", "--out", str(out), *argv]
+    )
+    assert words in line and not out.exists()
+
+
+def test_a_checkpoint_folder_needs_lerobot_and_says_so(refused, tmp_path):
+    """lerobot is never a dependency: where it is missing, a checkpoint is refused in a line
+    saying what to install (.ci/run drives one with lerobot installed, in its own venv)."""
+    import importlib.util
+
+    if importlib.util.find_spec("lerobot") is not None:
+        pytest.skip("lerobot is installed in this Python")
+    checkpoint = tmp_path / "pretrained_model"
+    checkpoint.mkdir()
+    (checkpoint / "config.json").write_text("{}")
+    out = tmp_path / "never"
+    line = refused(["evaluate", "--policy", str(checkpoint), "--out", str(out)])
+    assert "needs lerobot, which is not installed here" in line and not out.exists()
+
+
+def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
+    """The keys lerobot maps (agent_pos, environment_state, pixels/<camera>) carry what
+    `record` writes as observation.state, observation.environment_state and
+    observation.images.<camera>, at the same shapes, and the task's text."""
+    root = tmp_path / "d"
+    pyramid_sim.record(
+        root, "pyramid-even", episodes=1, cameras=("overview",), image_size=(32, 48), **TASK
+    )
+    info = json.loads((root / "meta/info.json").read_text())
+    env = gymnasium.make(
+        pyramid_sim.LEROBOT_ENV_ID,
+        structure="pyramid-even",
+        cameras=("overview",),
+        image_size=(32, 48),
+        max_episode_steps=10,
+        **TASK,
+    )
+    obs, _ = env.reset(seed=0)
+    features = info["features"]
+    assert list(obs["agent_pos"].shape) == features["observation.state"]["shape"]
+    assert (
+        list(obs["environment_state"].shape) == features["observation.environment_state"]["shape"]
+    )
+    assert list(obs["pixels"]["overview"].shape) == features["observation.images.overview"]["shape"]
+    first = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
+    np.testing.assert_array_equal(obs["agent_pos"], np.float32(first["observation.state"][0]))
+    np.testing.assert_array_equal(
+        obs["environment_state"], np.float32(first["observation.environment_state"][0])
+    )
+    task = pq.read_table(root / "meta/tasks.parquet").to_pylist()[0]["task"]
+    assert env.get_wrapper_attr("task_description") == env.get_wrapper_attr("task") == task
+    steps = 0
+    while True:
+        obs, _, terminated, truncated, info_ = env.step(env.unwrapped.held_command())
+        steps += 1
+        if terminated or truncated:
+            break
+    assert truncated and steps == 10 and "is_success" in info_
+    env.close()
