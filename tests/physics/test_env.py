@@ -433,3 +433,16 @@ def test_the_expert_picks_the_brick_where_an_imprecise_feeder_set_it():
         assert np.hypot(brick.x - spot.x, brick.y - spot.y) > 0.001, arm  # the feeder missed
         assert abs(pose.x - brick.x) < 1e-4 and abs(pose.y - brick.y) < 1e-4, arm
     env.close()
+
+
+def test_a_layout_that_stands_the_structure_by_the_spot_is_refused():
+    """The feeder sets no brick beside one that near: such a layout is refused (a drawn one
+    is drawn again)."""
+    from pyramid_sim.config import LayoutConfig
+    from pyramid_sim.learning.episodes import check_spot_clear
+
+    near = pyramid_sim.SimConfig(layout=LayoutConfig(structure_shift=(-0.1, 0.0)))
+    plan = pyramid_sim.plan("pyramid", layers=3, config=near)
+    with pytest.raises(pyramid_sim.ConfigError, match="from the spawn spot's brick; accepted 60"):
+        check_spot_clear(plan, near)
+    check_spot_clear(pyramid_sim.plan("pyramid", layers=3), pyramid_sim.SimConfig())
