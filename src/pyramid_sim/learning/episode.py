@@ -26,6 +26,15 @@ PRIMITIVES = (
 )
 
 
+TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
+
+
+def task_text(env: BuildEnv) -> str:
+    """The task a recording's frames and an evaluation's policy are given, in words."""
+    spec, robot = env.plan.spec, env.config.robot_description.name
+    return TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
+
+
 @dataclass(frozen=True)
 class Frame:
     """What a dataset keeps of one frame (one environment step): the observation before the

@@ -132,6 +132,8 @@ def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str,
         "failure": info["failure"] or (f"step limit: {steps} steps" if truncated else None),
         "truncated": bool(truncated),
         "steps": steps,
+        "clamped_steps": int(info["clamped_steps"]),  # the command limits' work
+        "clamp_peak": float(info["clamp_peak"]),
         "sim_time_s": info["sim_time_s"],
         "wall_time_s": time.perf_counter() - start,
     }

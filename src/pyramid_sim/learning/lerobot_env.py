@@ -14,7 +14,7 @@ from gymnasium import spaces
 
 from .. import LEROBOT_ENV_ID
 from .env import BuildEnv
-from .record import task_text
+from .episode import task_text
 
 __all__ = ["LEROBOT_ENV_ID", "LerobotView", "lerobot_keys", "make_lerobot_env"]
 

@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConfigError
+from .episode import task_text
 from .lerobot_env import lerobot_keys
-from .record import task_text
 
 
 class LerobotPolicy:

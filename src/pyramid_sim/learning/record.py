@@ -23,14 +23,13 @@ from ..sweep.grid import check_backend
 from ..version import __version__
 from . import lerobot_format as fmt
 from .env import BuildEnv
-from .episode import PRIMITIVES, Frame, expert_episode
+from .episode import PRIMITIVES, Frame, expert_episode, task_text
 from .layout import BRICK_FIELDS, camera_names, check_cameras, check_image_size, control_steps
 from .lerobot_meta import write_meta
 from .staging import STAGING, land, staged
 from .variation import DEFAULT_LEVEL, check_differ, check_level
 
 RECORDS = "meta/pyramid_sim"
-TASK = "Build the {structure} ({size}) with two {robot} arms, one brick at a time."
 
 
 @dataclass(frozen=True)
@@ -88,12 +87,6 @@ def make_env(config: RecordConfig) -> BuildEnv:
         randomize=config.randomize,
         **config.options,
     )
-
-
-def task_text(env: BuildEnv) -> str:
-    """The task a recording's frames and an evaluation's policy are given, in words."""
-    spec, robot = env.plan.spec, env.config.robot_description.name
-    return TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
 
 
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
