@@ -169,6 +169,33 @@ def add_physics_args(
     p.add_argument("--seed", type=whole("seed"), default=seed_default, help=seed_help)
 
 
+def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> None:
+    """--episodes, --variation and --fps, as record and evaluate share them."""
+    from ..choices import DEFAULT_VARIATION, VARIATIONS
+
+    p.add_argument(
+        "--episodes",
+        type=whole("episodes", "1 to 100000"),
+        default=episodes,
+        help=f"{what}, seeds --seed, --seed + 1, ... (default {episodes})",
+    )
+    p.add_argument(
+        "--variation",
+        default=DEFAULT_VARIATION,
+        choices=VARIATIONS,
+        help="how episodes differ: fixed (DE NIRO's layout), layout (the feed spot, the "
+        "structure's place and turn drawn per episode) or full (the layout and every "
+        f"randomization) (default {DEFAULT_VARIATION})",
+    )
+    p.add_argument(
+        "--fps",
+        type=whole("fps", "10, 20, 25, 50 or 100"),
+        default=25,
+        help="the environment's step rate, a dataset's frames a second (of the 100 Hz "
+        "control): 10, 20, 25, 50 or 100 (default 25)",
+    )
+
+
 def add_backend_args(p: argparse.ArgumentParser, what: str) -> None:
     """--backend and --ray-address: where the `what` (builds, episodes) run."""
     p.add_argument(

@@ -6,11 +6,18 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from ..choices import DEFAULT_VARIATION, EVAL_FIRST_SEED, VARIATIONS
+from ..choices import EVAL_FIRST_SEED
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
-from .args import add_out_args, add_physics_args, add_schedule_arg, add_structure_args, whole
+from .args import (
+    add_episode_args,
+    add_out_args,
+    add_physics_args,
+    add_schedule_arg,
+    add_structure_args,
+    whole,
+)
 from .progress import Progress
 
 
@@ -30,24 +37,7 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         "recordings start at 0)",
     )
     add_schedule_arg(p)
-    p.add_argument(
-        "--variation",
-        default=DEFAULT_VARIATION,
-        choices=VARIATIONS,
-        help=f"how episodes differ, as record's (default {DEFAULT_VARIATION})",
-    )
-    p.add_argument(
-        "--episodes",
-        type=whole("episodes", "1 to 100000"),
-        default=10,
-        help="episodes scored (default 10)",
-    )
-    p.add_argument(
-        "--fps",
-        type=whole("fps", "10, 20, 25, 50 or 100"),
-        default=25,
-        help="the environment's step rate, a recording's (default 25)",
-    )
+    add_episode_args(p, 10, "episodes scored")
     p.add_argument(
         "--max-steps",
         type=whole("max steps", "1 to 10000000"),

@@ -6,13 +6,12 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from ..choices import DEFAULT_VARIATION as DEFAULT_LEVEL
-from ..choices import VARIATIONS as LEVELS
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from .args import (
     add_backend_args,
+    add_episode_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
@@ -43,19 +42,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     add_structure_args(p)
     add_physics_args(p)
     add_schedule_arg(p)
-    p.add_argument(
-        "--episodes",
-        type=whole("episodes", "1 to 100000"),
-        default=1,
-        help="whole builds, seeds --seed, --seed + 1, ... (default 1)",
-    )
-    p.add_argument(
-        "--fps",
-        type=whole("fps", "10, 20, 25, 50 or 100"),
-        default=25,
-        help="frames a second, the environment's step rate (of the 100 Hz control): 10, 20, 25, "
-        "50 or 100 (default 25)",
-    )
+    add_episode_args(p, 1, "whole builds")
     p.add_argument(
         "--cameras",
         default=CAMERAS_DEFAULT,
@@ -69,14 +56,6 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         default=(224, 224),
         metavar="H[xW]",
         help="each camera's pixels, even (default 224)",
-    )
-    p.add_argument(
-        "--variation",
-        default=DEFAULT_LEVEL,
-        choices=LEVELS,
-        help="how episodes differ: fixed (DE NIRO's layout), layout (the feed spot, the "
-        "structure's place and turn drawn per episode) or full (the layout and every "
-        f"randomization) (default {DEFAULT_LEVEL})",
     )
     p.add_argument(
         "--randomize",
