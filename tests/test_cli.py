@@ -134,7 +134,7 @@ def test_reach_prints_the_largest_size_of_every_structure(capsys):
     assert lines[0].split()[-4:] == ["both", "arms,", "any", "layout"]
     rows = {line.split()[0]: line.split()[-2:] for line in lines[1:-1]}
     assert set(rows) == {"pyramid", "pyramid-even", "wall", "wall-pyramid", "towers", "corner-wall"}
-    assert rows["pyramid-even"][0] == "5"  # the README's figure; the default 4 fits under it
+    assert rows["pyramid-even"][0] == "5"  # docs/cli.md's figure; the default 4 fits under it
     assert int(rows["corner-wall"][0]) >= 5  # the seed's width
     # wherever the learning layout puts it, a structure reaches no further than where DE NIRO
     # put it; the 6-brick pyramid the tests build over 20 layouts is within it
@@ -174,13 +174,13 @@ def test_a_summary_without_a_slip_measured_says_n_a(tmp_path, capsys, fake_build
     assert "max slip n/a," in line and " - mm" not in line and "None" not in line
 
 
-def test_the_readme_says_exit_0_iff_every_check_held_and_names_them(tmp_path, fake_build):
+def test_the_cli_reference_says_exit_0_iff_every_check_held_and_names_them(tmp_path, fake_build):
     from pathlib import Path
 
     main(["build", "--layers", "1", "--quiet", "--out", str(tmp_path / "run")])
     names = json.loads((tmp_path / "run" / "result.json").read_text())["checks"]
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
-    section = readme[readme.index("## Command line") : readme.index("## Outputs")]
+    reference = (Path(__file__).resolve().parents[1] / "docs" / "cli.md").read_text()
+    section = reference[reference.index("## Command line") : reference.index("## Outputs")]
     text = " ".join(section.split())
     assert "Exit 0 when the build succeeded: every check in `result.json`'s `checks` held" in text
     assert [n for n in names if f"`{n}`" not in section] == []
