@@ -167,7 +167,8 @@ class BuildLoop:
         tells the schedule where the arms are and advances each arm's primitive (the pose it
         commands is `dispatch.runners[arm].pose`, the gap `.gap`). False once every brick is
         placed and has settled."""
-        self.feed_spot()  # as the last control step left it: a no-op but for the first
+        if self.steps == 0:  # after that `apply` feeds the spot as each control step ends
+            self.feed_spot()
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
             return False
