@@ -446,3 +446,20 @@ def test_a_layout_that_stands_the_structure_by_the_spot_is_refused():
     with pytest.raises(pyramid_sim.ConfigError, match="from the spawn spot's brick; accepted 60"):
         check_spot_clear(plan, near)
     check_spot_clear(pyramid_sim.plan("pyramid", layers=3), pyramid_sim.SimConfig())
+
+
+def test_a_layout_the_expert_cannot_build_is_drawn_again_from_the_seed():
+    """Seed 100001's first draw stands the 6-brick pyramid by the spot (the feeder stalled
+    there): the episode takes the seed's next draw, and says so."""
+    from pyramid_sim.learning import variation as var
+
+    env = gymnasium.make(ENV, structure="pyramid", layers=3).unwrapped
+    _, info = env.reset(seed=100001)
+    attempt = info["randomization"]["layout"]["attempt"]
+    assert attempt >= 1
+    first = var.placed(env.config, var.draw_layout(100001, "layout", 0))
+    with pytest.raises(pyramid_sim.ConfigError, match="from the spawn spot's brick"):
+        env.episodes.plan(first)
+    again = var.draw_layout(100001, "layout", attempt)
+    assert again == info["randomization"]["layout"]
+    env.close()
