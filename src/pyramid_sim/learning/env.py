@@ -24,7 +24,7 @@ import gymnasium
 import mink
 import numpy as np
 
-from ..api import resolve
+from ..options import resolve
 from ..choices import ArmChoice
 from ..errors import ConfigError
 from ..output.judge import judge
