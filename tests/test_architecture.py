@@ -93,10 +93,29 @@ def test_no_class_over_200_lines_and_no_function_over_60():
     assert long == []
 
 
-def test_the_public_api_resolves_and_has_a_version():
-    for name in pyramid_sim.__all__:
-        assert getattr(pyramid_sim, name) is not None, name
-    assert pyramid_sim.__version__ and pyramid_sim.__version__[0].isdigit()
+def test_the_public_api_is_the_objects_its_modules_define_and_the_installed_version():
+    """Each name of `__all__` is the very object the module `__init__.py` imports it from
+    defines; the two defined there are the environment ids registered with Gymnasium."""
+    import importlib.metadata
+
+    import gymnasium
+
+    home = {
+        alias.asname or alias.name: f"pyramid_sim.{node.module}"
+        for node in ast.parse((SRC / "__init__.py").read_text()).body
+        if isinstance(node, ast.ImportFrom) and node.level == 1
+        for alias in node.names
+    }
+    assert set(pyramid_sim.__all__) - set(home) == {"ENV_ID", "LEROBOT_ENV_ID"}
+    for name in home.keys() & set(pyramid_sim.__all__):
+        assert getattr(pyramid_sim, name) is getattr(importlib.import_module(home[name]), name)
+    assert gymnasium.spec(pyramid_sim.ENV_ID).entry_point == "pyramid_sim.learning.env:BuildEnv"
+    assert (
+        gymnasium.spec(pyramid_sim.LEROBOT_ENV_ID).entry_point
+        == "pyramid_sim.learning.lerobot_env:make_lerobot_env"
+    )
+    assert pyramid_sim.__version__ == importlib.metadata.version("pyramid_sim")
+    assert pyramid_sim.__version__[0].isdigit()
 
 
 def test_no_panda_name_is_spelled_outside_the_panda_preset():
