@@ -1,10 +1,13 @@
 """The benchmark runs end to end and reports every figure the benchmark names (values not judged:
 timings are reported by the benchmark, never asserted)."""
 
+import importlib.util
 import json
 import math
+import os
 import subprocess
 import sys
+import types
 from pathlib import Path
 
 import pytest
@@ -91,63 +94,112 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert "| build / bare |" in run.stdout and "| sweep scaling, 2 workers / 1 |" in run.stdout
 
 
+def _bench_main():
+    """benchmarks/run.py's `main`, loaded in this process."""
+    spec = importlib.util.spec_from_file_location("bench_run", ROOT / "benchmarks" / "run.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.main
+
+
+def _never_measured(*args, **kwargs):
+    raise AssertionError("a refused input reached the measurements")
+
+
+def _refusal(argv: list[str], capsys) -> str:
+    """Run the benchmark's `main` in this process expecting a refusal: exit status 2 and one
+    error line (an exception escaping `main` fails the test as a traceback would)."""
+    try:
+        code = _bench_main()(argv)
+    except SystemExit as exit_info:  # the parser's own refusals
+        code = exit_info.code
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert len(err.strip().splitlines()) == 1 and err.startswith("benchmarks/run.py: error: ")
+    return err
+
+
+def test_benchmark_refuses_a_word_for_a_number_in_its_parser(capsys, monkeypatch):
+    """Refused before perf/figures.py (and MuJoCo with it) is imported: a stub stands there."""
+    stub = types.ModuleType("pyramid_sim.perf.figures")
+    stub.BenchConfig = stub.run_all = _never_measured
+    monkeypatch.setitem(sys.modules, "pyramid_sim.perf.figures", stub)
+    assert "layers: 'six' is not a whole number; accepted 1 to 5" in _refusal(
+        ["--layers", "six"], capsys
+    )
+
+
+@pytest.mark.physics  # BenchConfig, which checks the ranges, is in perf/figures.py: MuJoCo
 @pytest.mark.parametrize(
     "args, named",
     [
         (["--layers", "0"], "layers"),
-        (["--layers", "six"], "layers"),
         (["--frames", "-1"], "frames"),
         (["--sweep-builds", "0"], "sweep builds"),
         (["--sweep-rounds", "11"], "sweep rounds"),
         (["--json", "/proc/no/such/bench.json"], "out"),
     ],
 )
-def test_benchmark_refuses_bad_input_in_one_line(args, named, tmp_path):
-    run = _bench(*args)
-    assert run.returncode == 2
-    assert len(run.stderr.strip().splitlines()) == 1 and named in run.stderr
-    assert "Traceback" not in run.stderr
+def test_benchmark_refuses_bad_input_in_one_line(args, named, capsys, monkeypatch):
+    """Out-of-range counts and an unwritable --json, before anything is measured."""
+    from pyramid_sim.perf import figures
+
+    monkeypatch.setenv("MUJOCO_GL", os.environ.get("MUJOCO_GL") or "egl")  # main chooses one
+    monkeypatch.setattr(figures, "run_all", _never_measured)
+    assert named in _refusal(args, capsys)
 
 
-def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap():
-    import time
-    from types import SimpleNamespace
+@pytest.fixture
+def clock(monkeypatch):
+    """The timers' clock made a counter that only `clock.sleep` moves: exact times, no waiting."""
+    from pyramid_sim.perf import timers
 
+    fake = types.SimpleNamespace(now=0.0)
+    fake.perf_counter = lambda: fake.now
+
+    def sleep(seconds: float) -> None:
+        fake.now += seconds
+
+    fake.sleep = sleep
+    monkeypatch.setattr(timers, "time", fake)
+    return fake
+
+
+def test_timed_calls_count_nested_calls_once_and_restore_what_they_wrap(clock):
     from pyramid_sim.perf.timers import timed_calls
 
     def inner() -> None:
-        time.sleep(0.02)
+        clock.sleep(0.02)
 
     def outer() -> None:
         owner.inner()
-        time.sleep(0.02)
+        clock.sleep(0.02)
 
-    owner = SimpleNamespace(inner=inner, outer=outer)
+    owner = types.SimpleNamespace(inner=inner, outer=outer)
     with timed_calls([(owner, "inner"), (owner, "outer")]) as spent:
         owner.outer()
         owner.inner()
-    assert 0.06 <= spent[0] < 0.2  # outer's 0.04 (inner within it once) and inner's 0.02
+        clock.sleep(1.0)  # between timed calls: not counted
+    assert spent[0] == pytest.approx(0.06)  # outer's 0.04 (inner within it once) and inner's
     assert owner.inner is inner and owner.outer is outer
 
 
-def test_timed_parts_keep_a_clock_each_and_restore_what_they_wrap():
-    import time
-    from types import SimpleNamespace
-
+def test_timed_parts_keep_a_clock_each_and_restore_what_they_wrap(clock):
     from pyramid_sim.perf.timers import timed_parts
 
     def slow() -> None:
-        time.sleep(0.03)
+        clock.sleep(0.03)
 
     def quick() -> None:
-        time.sleep(0.01)
+        clock.sleep(0.01)
 
-    owner = SimpleNamespace(slow=slow, quick=quick)
+    owner = types.SimpleNamespace(slow=slow, quick=quick)
     with timed_parts({"slow": [(owner, "slow")], "quick": [(owner, "quick")]}) as spent:
         owner.slow()
         owner.quick()
         owner.quick()
-    assert 0.03 <= spent["slow"] < 0.1 and 0.02 <= spent["quick"] < 0.08
+    assert spent == pytest.approx({"slow": 0.03, "quick": 0.02})
     assert owner.slow is slow and owner.quick is quick
 
 
