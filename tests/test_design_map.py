@@ -1,0 +1,64 @@
+"""docs/design.md's map of the code is the one scripts/design_map.py makes from the modules'
+docstrings: a module added, moved or redescribed without the map made afresh fails here.
+Read with `ast` only; nothing of pyramid_sim is imported."""
+
+import importlib.util
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _design_map():
+    spec = importlib.util.spec_from_file_location("design_map", ROOT / "scripts/design_map.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+dm = _design_map()
+
+
+def test_the_map_in_design_md_is_the_one_the_modules_make():
+    """Stale? Run `python3 scripts/design_map.py`."""
+    assert dm.current(dm.DESIGN.read_text(encoding="utf-8")) == dm.render()
+
+
+def test_every_module_has_a_docstring_for_the_map():
+    assert dm.undocumented() == []
+
+
+def test_the_map_names_every_module_by_its_first_line_grouped_by_package(tmp_path):
+    src = tmp_path / "pkg"
+    (src / "sub").mkdir(parents=True)
+    (src / "__init__.py").write_text('"""The package."""\n')
+    (src / "a.py").write_text('"""Ends here. And more\non the next line."""\n')
+    (src / "b.py").write_text('"""A sentence that goes\non to the next line."""\n')
+    (src / "c.py").write_text("x = 1\n")
+    (src / "sub" / "__init__.py").write_text('"""What sub holds."""\n')
+    (src / "sub" / "d.py").write_text('"""D, alone."""\n')
+    assert dm.render(src) == (
+        "The top level, `src/pyramid_sim/`:\n\n"
+        "- `__init__.py`: The package.\n"
+        "- `a.py`: Ends here.\n"
+        "- `b.py`: A sentence that goes ...\n"
+        "- `c.py`: (no docstring)\n\n"
+        "`sub/`: What sub holds.\n\n"
+        "- `sub/d.py`: D, alone.\n"
+    )
+    assert dm.undocumented(src) == ["c.py"]
+    page = f"# Page\n\n{dm.START}\nold map\n{dm.END}\n\nAfter.\n"
+    fresh = dm.updated(page, src)
+    assert dm.current(fresh) == dm.render(src)
+    assert fresh.startswith("# Page\n\n") and fresh.endswith(f"{dm.END}\n\nAfter.\n")
+    assert dm.updated(fresh, src) == fresh  # made afresh twice, the same page
+
+
+def test_a_long_line_wraps_with_its_ellipsis_held_to_the_word_before(tmp_path):
+    src = tmp_path / "pkg"
+    src.mkdir()
+    words = "word " * 16 + "wordyyy"  # "- `long.py`: " and these fill the line to its 100th column
+    (src / "long.py").write_text(f'"""{words}\nand on."""\n')
+    item = dm.render(src).splitlines()[2:]
+    assert len(f"- `long.py`: {words}") == dm.WIDTH
+    assert item == [f"- `long.py`: {'word ' * 15}word", "  wordyyy ..."]  # not "  ..." alone
