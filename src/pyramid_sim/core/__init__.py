@@ -1,5 +1,6 @@
-"""Pure geometry and scheduling, no MuJoCo: the seeds' structure generators, plans and arm
-assignment, poses and trajectories, the primitives, the two schedules and their zones.
+"""Pure geometry and scheduling, no MuJoCo: DE NIRO's and the Brick Manager's structure
+generators, plans and arm assignment, poses and trajectories, the primitives, the two schedules
+and their zones.
 
 Importing the package imports none of its modules; `__all__` names them.
 """

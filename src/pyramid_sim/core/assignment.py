@@ -1,4 +1,4 @@
-"""Which arm places which brick, and in what order: the seed's `arrange_coordinates`."""
+"""Which arm places which brick, and in what order: DE NIRO's `arrange_coordinates`."""
 
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ ARM_PICKS: tuple[tuple[Arm, Callable[..., BrickTarget]], ...] = (("left", max), 
 def arrange(targets: Sequence[BrickTarget]) -> tuple[Assignment, ...]:
     """Lowest layer first; the left arm takes the remaining brick of that layer with the largest
     y, then the right arm the one with the smallest y, alternating; with an odd count the left
-    arm places the last brick. (The seed compares z values; layers are compared here, which is
+    arm places the last brick. (DE NIRO compares z values; layers are compared here, which is
     the same for its structures and is exact.)"""
     remaining = list(targets)
     order: list[Assignment] = []

@@ -1,4 +1,4 @@
-"""The Brick Manager's structures (seed 000) as resting targets: pure geometry, no MuJoCo."""
+"""The Brick Manager's structures as resting targets: pure geometry, no MuJoCo."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from .seed_pyramids import SEED_GAP, SEED_START, SEED_X_GAP, BrickTarget, check_
 
 MAX_COURSE = 12  # bricks a course, towers side by side
 MAX_BRICKS = 200
-SEED_WALL_TOLERANCE = 0.02  # the seed's `tol`: gap between bricks end to end
+SEED_WALL_TOLERANCE = 0.02  # the Brick Manager's `tol`: gap between bricks end to end
 
 
 def _wall_line(start: tuple[float, float, float], brick: BrickConfig) -> tuple[float, float]:
@@ -25,9 +25,9 @@ def wall(
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
-    """The seed's `goal_manager_server2` wall: `bricks` bricks in courses along y, `width`
+    """The Brick Manager's `goal_manager_server2` wall: `bricks` bricks in courses along y, `width`
     stretchers (yaw pi/2) a course, `tol` apart; every second course is offset by half a brick
-    and closed at both ends by a header turned 90 degrees (the seed's `angle`), whose outer face
+    and closed at both ends by a header turned 90 degrees (its `angle`), whose outer face
     is flush with the wall's end: `shift2` = (length - width) / 2 in from the end stretcher's
     centre, `shift1` = (length + width) / 2 from its neighbour's. Courses bottom first; the last
     course may be partial."""
@@ -59,9 +59,9 @@ def wall_pyramid(
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
-    """The seed's `goal_manager_server3`: stretchers end to end along y (yaw pi/2), `width` in
-    the bottom course, each course above one shorter and shifted by half a brick, `layers`
-    courses (at most `width`)."""
+    """The Brick Manager's `goal_manager_server3`: stretchers end to end along y (yaw pi/2),
+    `width` in the bottom course, each course above one shorter and shifted by half a brick,
+    `layers` courses (at most `width`)."""
     check_count("wall width", width, 1, MAX_COURSE)
     check_count("layers", layers, 1, width)  # a course of `width` carries at most `width`
     x, z0 = _wall_line(start, brick)
@@ -83,9 +83,9 @@ def towers(
     start: tuple[float, float, float] = SEED_START,
     pickup_y: float | None = None,
 ) -> tuple[BrickTarget, ...]:
-    """The seed's `generate_simple_wall` helper: `towers` columns of `layers` bricks side by
-    side (yaw 0, the pyramids' gap between them), begun at the end away from the pick-up spot
-    (the seed: pick-up at y >= 0, first tower at negative y). Tower by tower."""
+    """The Brick Manager's `generate_simple_wall` helper: `towers` columns of `layers` bricks
+    side by side (yaw 0, the pyramids' gap between them), begun at the end away from the
+    pick-up spot (as there: pick-up at y >= 0, first tower at negative y). Tower by tower."""
     check_count("towers", towers, 1, MAX_COURSE)
     check_layers(layers)
     x, z0 = _wall_line(start, brick)

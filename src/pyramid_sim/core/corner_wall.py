@@ -1,11 +1,11 @@
 """The Brick Manager's corner wall, as its authors' loop builds it (de3-robo/brick_manager,
 `goal_manager_server2` in scripts/brick_manager_server.py): pure geometry, no MuJoCo.
 
-The seed shows only that function's set-up (a cornerstone, 15 bricks, "width" 5, 20 mm added to
-the brick's length and height); its loop makes a corner: each course has width + 1 bricks, the
-first width // 2 + 1 laid end to end along one leg from the corner, the rest turned 90 degrees
-and laid along the other leg, and every second course shifts each leg by one brick width so
-the courses interlock at the corner, as a mason bonds one.
+The Brick Manager's server shows only that function's set-up (a cornerstone, 15 bricks,
+"width" 5, 20 mm added to the brick's length and height); its loop makes a corner: each course
+has width + 1 bricks, the first width // 2 + 1 laid end to end along one leg from the corner,
+the rest turned 90 degrees and laid along the other leg, and every second course shifts each
+leg by one brick width so the courses interlock at the corner, as a mason bonds one.
 
 Two things differ from the loop's numbers, and why:
 - the loop places the turned leg (L - W) / 2 from the corner in both parities, which in every

@@ -1,7 +1,7 @@
-"""A schedule beyond the seed's: the arms pipeline picks and places through two zones, the
+"""A schedule beyond DE NIRO's: the arms pipeline picks and places through two zones, the
 spawn spot's and the structure's, as a pure state machine.
 
-The seed's lockstep carries every brick out to the arm's outer clear pose and back, and holds
+DE NIRO's lockstep carries every brick out to the arm's outer clear pose and back, and holds
 both arms at a barrier four times a brick over one zone that spans the table. Here each zone is
 held by one arm at a time: one arm picks at the spot while the other places at the structure.
 An arm that may not enter waits at a standby pose just outside (the dispatch sends it there),

@@ -17,7 +17,7 @@ from .structures import BrickTarget, StructureSpec
 @dataclass(frozen=True)
 class Plan:
     spec: StructureSpec
-    arms: ArmChoice  # both arms (the seed's split) or one alone
+    arms: ArmChoice  # both arms (DE NIRO's split) or one alone
     spawn: Pose
     bricks: tuple[Assignment, ...]
 
@@ -78,7 +78,7 @@ def _xyz(pose: Pose) -> list[float]:
 
 
 def make_plan(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") -> Plan:
-    """Targets of the structure, assigned to the arms by the seed's rule; with one arm, that
+    """Targets of the structure, assigned to the arms by DE NIRO's rule; with one arm, that
     arm places every brick in the structure's own order (the Brick Manager's single Panda)."""
     if arms not in ARM_CHOICES:
         raise ConfigError(f"arms: unknown {arms!r}; accepted {', '.join(ARM_CHOICES)}")
@@ -90,7 +90,7 @@ def make_plan(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") 
         layout.spawn_yaw,
     )
     # With one arm the structure stands in front of it (the Brick Manager's single Panda built
-    # before itself); with two, centred on the spawn spot between them, as the seed.
+    # before itself); with two, centred on the spawn spot between them, as DE NIRO's.
     centre_y = spawn.y if arms == "both" else config.robot_description.arms[arms].base[1]
     targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y)
     targets = moved(targets, layout.structure_shift, layout.structure_turn)

@@ -1,7 +1,7 @@
-"""The seed's motion primitives as lists of steps: pure, no MuJoCo.
+"""DE NIRO's motion primitives as lists of steps: pure, no MuJoCo.
 
 pick  = hover, approach, servo, grip, retract (approach and retract at half the hover distance,
-        as the seed halves it for picking);
+        as DE NIRO halves it for picking);
 place = hover, servo, release, retract;
 clear = move to the arm's outer collision-clear pose.
 """
@@ -21,7 +21,7 @@ from .zone import Zone, segment_gap
 
 # Grasps take the hand yaw nearest this one (of the two that grip a brick across its width).
 YAW_REFERENCE = 0.0
-# m/s^2: a quick lift's bound, what the seed's own slow 5 cm moves reach (docs/performance.md)
+# m/s^2: a quick lift's bound, what DE NIRO's own slow 5 cm moves reach (docs/performance.md)
 LIFT_ACCELERATION = 2.0
 
 
@@ -112,7 +112,7 @@ def place_steps(
 
 def lift_speed(distance: float, motion: MotionConfig) -> float:
     """The peak speed of a quick lift over `distance`: the free speed, bounded by
-    `LIFT_ACCELERATION`, never below the slow speed of the seed's retract."""
+    `LIFT_ACCELERATION`, never below the slow speed of DE NIRO's retract."""
     return max(motion.slow_speed, bounded_speed(distance, motion.speed, LIFT_ACCELERATION))
 
 

@@ -1,11 +1,11 @@
-"""The seed's four-phase lockstep, as a pure state machine.
+"""DE NIRO's four-phase lockstep, as a pure state machine.
 
 Phases, repeated until every brick is placed:
   1. right arm to its outer clear pose, left arm picks;
   2. left arm to its clear pose, right arm picks;
   3. right arm clear, left arm places;
   4. left arm clear, right arm places.
-No phase starts before both arms have finished the previous one (the seed's hub barrier), and
+No phase starts before both arms have finished the previous one (DE NIRO's hub barrier), and
 within a phase the working arm may enter the shared zone (spawn spot and structure) only after
 the clearing arm has reported itself outside it, so the two are never inside together.
 """
@@ -53,8 +53,8 @@ class LockstepScheduler:
     """Hands each arm its task for the current phase and advances at the barrier."""
 
     zones = ("shared",)
-    waits_at_standby = False  # an arm waits at its outer clear pose, as in the seed
-    quick_retracts = False  # the seed's slow retracts, each move turning the hand on its own
+    waits_at_standby = False  # an arm waits at its outer clear pose, as DE NIRO's does
+    quick_retracts = False  # DE NIRO's slow retracts, each move turning the hand on its own
 
     def __init__(self, left: Sequence[int], right: Sequence[int]) -> None:
         self._queues = {"left": list(left), "right": list(right)}
@@ -67,7 +67,7 @@ class LockstepScheduler:
 
     @property
     def phase(self) -> int:
-        """Current phase, 1 to 4 as in the seed (0 once finished): where a schedule stepped by
+        """Current phase, 1 to 4 as in DE NIRO's (0 once finished): where a schedule stepped by
         hand (or a test) stands."""
         return 0 if self.finished else self._phase + 1
 

@@ -1,6 +1,6 @@
-"""DE NIRO's pyramids (seed 001) as resting targets: pure geometry, no MuJoCo.
+"""DE NIRO's pyramids as resting targets: pure geometry, no MuJoCo.
 
-`create_coordinates` and `create_coordinates_new` are the seed's generators (DE NIRO's
+`create_coordinates` and `create_coordinates_new` are DE NIRO's generators (its
 pick_and_place.py) kept number for number, 0.03 m release gap and 4-decimal rounding included;
 `pyramid` and `pyramid_even` turn their layouts into resting targets (the gap is a separate
 release clearance in MotionConfig).
@@ -13,8 +13,8 @@ from dataclasses import dataclass
 from ..config import BrickConfig, check_count
 from .poses import Pose
 
-SEED_START = (0.49, 0.01, 0.11)  # xs, ys, zs: the seed's spawn spot and bottom brick centre
-SEED_GAP = 0.03  # gap between neighbouring bricks across the face, and the seed's drop height
+SEED_START = (0.49, 0.01, 0.11)  # xs, ys, zs: DE NIRO's spawn spot and bottom brick centre
+SEED_GAP = 0.03  # gap between neighbouring bricks across the face, and DE NIRO's drop height
 SEED_X_GAP = 0.05  # the structure stands this far beyond one brick length past the spawn
 MAX_LAYERS = 12
 
@@ -28,8 +28,8 @@ class BrickTarget:
 
 
 def create_coordinates(layer: int) -> tuple[list[list[float]], list[float]]:
-    """The seed's `create_coordinates`: layers of n, n-1, ..., 1 bricks, top layer first,
-    odd and even layers offset by half a pitch. Returns (lay, s) as the seed does."""
+    """DE NIRO's `create_coordinates`: layers of n, n-1, ..., 1 bricks, top layer first,
+    odd and even layers offset by half a pitch. Returns (lay, s) as DE NIRO's does."""
     xs, ys, zs = SEED_START
     xb, yb, zb = 0.192, 0.086, 0.062
     sc = 1
@@ -54,7 +54,7 @@ def create_coordinates(layer: int) -> tuple[list[list[float]], list[float]]:
 
 
 def create_coordinates_new(layer: int) -> tuple[list[list[float]], list[float]]:
-    """The seed's `create_coordinates_new`: layers of 2n, 2n-2, ..., 2 bricks, bottom first."""
+    """DE NIRO's `create_coordinates_new`: layers of 2n, 2n-2, ..., 2 bricks, bottom first."""
     xs, ys, zs = SEED_START
     xb, yb, zb = 0.192, 0.086, 0.062
     sc = 1
@@ -93,7 +93,7 @@ def pyramid(
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
-    """The seed's `create_coordinates` pyramid: n, n-1, ..., 1 bricks, each layer offset by half
+    """DE NIRO's `create_coordinates` pyramid: n, n-1, ..., 1 bricks, each layer offset by half
     a pitch from the one below, long axes pointing away from the robots (yaw 0)."""
     check_layers(layers)
     slots = [[k - (n - 1) / 2 for k in range(n)] for n in range(layers, 0, -1)]
@@ -105,7 +105,7 @@ def pyramid_even(
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
 ) -> tuple[BrickTarget, ...]:
-    """The seed's `create_coordinates_new` pyramid: 2n, 2n-2, ..., 2 bricks in columns."""
+    """DE NIRO's `create_coordinates_new` pyramid: 2n, 2n-2, ..., 2 bricks in columns."""
     check_layers(layers)
     slots = [[k - (n - 1) / 2 for k in range(n)] for n in range(2 * layers, 0, -2)]
     return _layout(slots, brick, start)

@@ -29,13 +29,13 @@ __all__ = [
 STRUCTURES: dict[str, tuple[Callable[..., tuple[BrickTarget, ...]] | None, dict[str, int]]] = {
     "pyramid": (pyramid, {"layers": 4}),
     "pyramid-even": (pyramid_even, {"layers": 4}),
-    "wall": (wall, {"bricks": 13, "width": 4}),  # the seed's 15 x 5: both arms only
+    "wall": (wall, {"bricks": 13, "width": 4}),  # the Brick Manager's 15 x 5: both arms only
     "wall-pyramid": (wall_pyramid, {"width": 5, "layers": 3}),
     "towers": (towers, {"towers": 4, "layers": 3}),
     "corner-wall": (
         corner_wall,
         {"bricks": 15, "width": 5},
-    ),  # the upstream loop's, the seed's size
+    ),  # the upstream loop's, the Brick Manager's size
     "list": (None, {}),
 }
 SIZE_OPTIONS = ("layers", "bricks", "width", "towers")

@@ -1,4 +1,4 @@
-"""The zones the arms take turns in: for the seed's lockstep one shared zone over the spawn
+"""The zones the arms take turns in: for DE NIRO's lockstep one shared zone over the spawn
 spot and the structure; for the overlap schedule the spot and the structure apart."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Rethink Baxter, DE NIRO's own robot: one torso, two 7-joint arms and electric parallel
-grippers, in its own base frame (the seed's coordinates are in it). Every Baxter name, limit
+grippers, in its own base frame (DE NIRO's coordinates are in it). Every Baxter name, limit
 and dimension lives here and in physics/robot_models/baxter.py."""
 
 from __future__ import annotations
