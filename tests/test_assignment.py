@@ -1,4 +1,4 @@
-"""The seed's arrange_coordinates: lowest layer first, left takes largest y, right smallest."""
+"""DE NIRO's arrange_coordinates: lowest layer first, left takes largest y, right smallest."""
 
 from pyramid_sim import arrange, pyramid, pyramid_even
 
@@ -35,8 +35,8 @@ def test_indices_follow_build_order_and_cover_every_brick():
     assert sorted(id(a.target) for a in order) == sorted(id(t) for t in targets)
 
 
-def test_matches_the_seeds_own_loop():
-    """An independent port of the seed's while-loop gives the same left and right lists."""
+def test_matches_de_niros_own_loop():
+    """An independent port of DE NIRO's while-loop gives the same left and right lists."""
     targets = pyramid(4)
     lay = [[t.pose.x, t.pose.y, t.pose.z] for t in targets]
     r_arm, l_arm = [], []

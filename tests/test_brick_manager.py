@@ -1,4 +1,4 @@
-"""The Brick Manager's structures (seed 000): wall, wall pyramid, towers, goal lists."""
+"""The Brick Manager's structures: wall, wall pyramid, towers, goal lists."""
 
 import json
 import math
@@ -18,17 +18,19 @@ from pyramid_sim.core.seed_pyramids import SEED_START
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.resources import GOALS
 
-SEED_BRICK = BrickConfig(length=0.2, width=0.09, height=0.06)  # goal_manager_server2/3's brick
+BRICK_MANAGER_BRICK = BrickConfig(
+    length=0.2, width=0.09, height=0.06
+)  # goal_manager_server2/3's brick
 TABLE_Z = 0.11
 
 
-# The seed's own function, as its authors wrote it: the reference `wall_pyramid` is held to.
+# The Brick Manager's own function, as its authors wrote it: the reference `wall_pyramid` is held to.
 def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[float]]:
-    """The seed's `goal_manager_server3` wall pyramid, its own numbers: a parallelogram of
+    """The Brick Manager's `goal_manager_server3` wall pyramid, its own numbers: a parallelogram of
     bricks end to end along x (pitch blength + tol, courses bheight + tol apart, each course
-    shifted by half a brick), with the overhanging ends of each course peeled away. The seed
-    spelled out heights 1 to 5 by hand; this follows the same rule for any height (the loop's
-    length, not shown in the seed, is one course per height)."""
+    shifted by half a brick), with the overhanging ends of each course peeled away. The Brick
+    Manager spelled out heights 1 to 5 by hand; this follows the same rule for any height (the loop's
+    length, not shown there, is one course per height)."""
     bstart = [1, -0.8, 0.116, 0, 0, math.pi / 2]
     blength, bheight = 0.2 + SEED_WALL_TOLERANCE, 0.06 + SEED_WALL_TOLERANCE
     square_number = wall_base_width * wall_height
@@ -53,7 +55,7 @@ def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[fl
             offset += 1
     if wall_height == 1:
         return pyramid_seperate
-    # The seed's peel, generalised: the first slice keeps the base course and the first brick
+    # The Brick Manager's peel, generalised: the first slice keeps the base course and the first brick
     # of the next (its `[:(w*2)-1]`), each later slice the k-th course minus its last k bricks.
     pos_final = pyramid_seperate[: (wall_base_width * 2) - 1]
     for k in range(2, wall_height):
@@ -61,8 +63,8 @@ def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[fl
     return pos_final
 
 
-def _seed_peel(w: int, h: int) -> list:
-    """The seed's own if-chain for heights 1 to 5, as printed: the oracle for our loop."""
+def _brick_manager_peel(w: int, h: int) -> list:
+    """The Brick Manager's own if-chain for heights 1 to 5, as printed: the oracle for our loop."""
     square = []
     blength, bheight = 0.22, 0.08
     xnos = znos = offset = 0
@@ -98,8 +100,8 @@ def _seed_peel(w: int, h: int) -> list:
 
 
 @pytest.mark.parametrize("h", [1, 2, 3, 4, 5])
-def test_goal_manager_server3_is_the_seeds_peel(h):
-    assert goal_manager_server3(5, h) == _seed_peel(5, h)
+def test_goal_manager_server3_is_the_brick_managers_peel(h):
+    assert goal_manager_server3(5, h) == _brick_manager_peel(5, h)
 
 
 def test_goal_manager_server3_numbers_by_hand():
@@ -110,14 +112,14 @@ def test_goal_manager_server3_numbers_by_hand():
 
 
 @pytest.mark.parametrize("width, layers", [(5, 1), (5, 3), (5, 5), (3, 2)])
-def test_wall_pyramid_lays_the_seeds_pattern_along_the_wall(width, layers):
-    """Same offsets along the wall as the seed, resting heights (the seed's + tol was a drop)."""
-    seed = goal_manager_server3(width, layers)
-    mine = wall_pyramid(width, layers, SEED_BRICK)
-    assert len(mine) == len(seed) == sum(width - c for c in range(layers))
+def test_wall_pyramid_lays_the_brick_managers_pattern_along_the_wall(width, layers):
+    """Same offsets along the wall as the Brick Manager, resting heights (its + tol was a drop)."""
+    theirs = goal_manager_server3(width, layers)
+    mine = wall_pyramid(width, layers, BRICK_MANAGER_BRICK)
+    assert len(mine) == len(theirs) == sum(width - c for c in range(layers))
     y0 = min(t.pose.y for t in mine if t.layer == 0)
     assert sorted(round(t.pose.y - y0, 3) for t in mine) == sorted(
-        round(q[0] - 1.0, 3) for q in seed
+        round(q[0] - 1.0, 3) for q in theirs
     )
     assert {round(t.pose.z - SEED_START[2], 4) for t in mine} == {
         round(c * 0.06, 4) for c in range(layers)
@@ -125,32 +127,32 @@ def test_wall_pyramid_lays_the_seeds_pattern_along_the_wall(width, layers):
     assert all(t.pose.yaw == pytest.approx(math.pi / 2) for t in mine)
 
 
-def test_wall_of_the_seeds_15_bricks_5_wide():
-    targets = wall(15, 5, SEED_BRICK)
+def test_wall_of_the_brick_managers_15_bricks_5_wide():
+    targets = wall(15, 5, BRICK_MANAGER_BRICK)
     per_course = [sum(t.layer == c for t in targets) for c in range(3)]
     assert per_course == [5, 6, 4]  # full, closed by two turned ends, partial
     second = sorted((t for t in targets if t.layer == 1), key=lambda t: t.pose.y)
     first = sorted((t for t in targets if t.layer == 0), key=lambda t: t.pose.y)
-    assert second[0].pose.yaw == 0.0 and second[-1].pose.yaw == 0.0  # the seed's `angle`
-    shift1 = (SEED_BRICK.length + SEED_BRICK.width) / 2
-    shift2 = (SEED_BRICK.length - SEED_BRICK.width) / 2
+    assert second[0].pose.yaw == 0.0 and second[-1].pose.yaw == 0.0  # the Brick Manager's `angle`
+    shift1 = (BRICK_MANAGER_BRICK.length + BRICK_MANAGER_BRICK.width) / 2
+    shift2 = (BRICK_MANAGER_BRICK.length - BRICK_MANAGER_BRICK.width) / 2
     # The turned end sits shift2 in from the end stretcher below: flush outer faces.
     assert first[0].pose.y - second[0].pose.y == pytest.approx(shift2)
     assert second[-1].pose.y - first[-1].pose.y == pytest.approx(shift2)
-    # ... and shift1 plus the seed's tolerance from its neighbour in the course.
+    # ... and shift1 plus the Brick Manager's tolerance from its neighbour in the course.
     assert second[1].pose.y - second[0].pose.y == pytest.approx(shift1 + SEED_WALL_TOLERANCE)
     # Stretchers of the offset course sit half a pitch along.
-    pitch = SEED_BRICK.length + SEED_WALL_TOLERANCE
+    pitch = BRICK_MANAGER_BRICK.length + SEED_WALL_TOLERANCE
     assert second[1].pose.y - first[0].pose.y == pytest.approx(pitch / 2)
 
 
 def test_towers_begin_away_from_the_pick_up_spot():
     brick = BrickConfig()
-    seed_side = towers(3, 2, brick, (0.49, 0.01, 0.11))  # spot at y >= 0: start negative
-    assert seed_side[0].pose.y < seed_side[-1].pose.y
+    high_side = towers(3, 2, brick, (0.49, 0.01, 0.11))  # spot at y >= 0: start negative
+    assert high_side[0].pose.y < high_side[-1].pose.y
     other = towers(3, 2, brick, (0.49, 0.25, 0.11), pickup_y=0.01)  # spot on the low side
     assert other[0].pose.y > other[-1].pose.y
-    assert [t.layer for t in seed_side] == [0, 1, 0, 1, 0, 1]  # tower by tower
+    assert [t.layer for t in high_side] == [0, 1, 0, 1, 0, 1]  # tower by tower
 
 
 @pytest.mark.parametrize(
@@ -170,7 +172,7 @@ def test_impossible_sizes_are_refused(kwargs, words):
         StructureSpec(**kwargs)
 
 
-def test_the_seeds_five_goals_ship_as_an_example():
+def test_the_brick_managers_five_goals_ship_as_an_example():
     goals = load_goals(GOALS / "seed_five.json", BrickConfig(), TABLE_Z)
     assert [round(g.pose.y, 3) for g in goals] == [0.01, -0.24, 0.26, -0.17, 0.19]
     assert [g.layer for g in goals] == [0, 0, 0, 1, 1]

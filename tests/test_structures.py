@@ -1,4 +1,4 @@
-"""The generators reproduce the seed's numbers (pick_and_place.py of DE NIRO's pyramid)."""
+"""The generators reproduce DE NIRO's numbers (the pick_and_place.py of its pyramid)."""
 
 import pytest
 
@@ -12,10 +12,10 @@ from pyramid_sim import (
 from pyramid_sim.core.seed_pyramids import SEED_GAP
 
 
-def test_seed_create_coordinates_numbers():
+def test_de_niros_create_coordinates_numbers():
     lay, start = create_coordinates(4)
     assert start == [0.49, 0.01, 0.11]
-    # Worked by hand from the seed: x = 0.49 + 0.192 + 0.05; y = 0.01 + item * (0.086 + 0.03);
+    # Worked by hand from DE NIRO's code: x = 0.49 + 0.192 + 0.05; y = 0.01 + item * (0.086 + 0.03);
     # z = 0.11 + (4 - j - 1) * 0.062 + 0.03, top layer (j = 0) first.
     assert lay[0] == [0.732, 0.01, 0.326]
     assert lay[1:3] == [[0.732, -0.048, 0.264], [0.732, 0.068, 0.264]]
@@ -28,7 +28,7 @@ def test_seed_create_coordinates_numbers():
     ]
 
 
-def test_seed_create_coordinates_new_numbers():
+def test_de_niros_create_coordinates_new_numbers():
     lay, _ = create_coordinates_new(4)
     assert [len([p for p in lay if p[2] == z]) for z in (0.14, 0.202, 0.264, 0.326)] == [8, 6, 4, 2]
     assert lay[0] == [0.732, -0.396, 0.14]
@@ -37,15 +37,15 @@ def test_seed_create_coordinates_new_numbers():
 
 
 @pytest.mark.parametrize(
-    "generator, seed", [(pyramid, create_coordinates), (pyramid_even, create_coordinates_new)]
+    "generator, de_niros", [(pyramid, create_coordinates), (pyramid_even, create_coordinates_new)]
 )
 @pytest.mark.parametrize("layers", [1, 2, 3, 4, 5])
-def test_targets_are_the_seed_coordinates_less_the_release_gap(generator, seed, layers):
+def test_targets_are_de_niros_coordinates_less_the_release_gap(generator, de_niros, layers):
     targets = generator(layers)
     mine = sorted(
         (round(t.pose.x, 4), round(t.pose.y, 4), round(t.pose.z + SEED_GAP, 4)) for t in targets
     )
-    theirs = sorted(tuple(p) for p in seed(layers)[0])
+    theirs = sorted(tuple(p) for p in de_niros(layers)[0])
     assert mine == theirs
     assert all(t.pose.yaw == 0.0 for t in targets)  # long axis away from the robots
 

@@ -74,7 +74,7 @@ def test_dispatch_alone_hands_the_first_picks_out_by_the_schedule(scene):
     first = {a: dispatch.task_of[a] for a in c.ARMS}
     assert all(t is not None for t in first.values())
     busy = [a for a in c.ARMS if dispatch.step_of(a) is not None]
-    assert busy  # at least one arm has its first step, the seed's hover
+    assert busy  # at least one arm has its first step, DE NIRO's hover
     pose = dispatch.advance(busy[0], lambda: 0.0, lambda *done: None)
     assert np.isfinite([pose.x, pose.y, pose.z]).all()
 
