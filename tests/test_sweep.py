@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.sweep.backends import RunResult, make_row, run_processes
+from pyramid_sim.sweep.runs import RunResult, make_row, run_builds
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
 from pyramid_sim.sweep.heatmaps import write_heatmaps
 from pyramid_sim.sweep.report import grid_rows, summary_table
@@ -107,11 +107,12 @@ def _fake_run(spec):
     return RunResult(spec, make_row(spec, 0.0, None, success=True))
 
 
+@pytest.mark.processes
 def test_the_pool_turns_crashes_and_timeouts_into_failed_rows_and_goes_on():
     config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), repeats=3)
     results: list[RunResult] = []
     start = time.monotonic()
-    run_processes(config.runs(), workers=2, timeout=3.0, on_result=results.append, run=_fake_run)
+    run_builds(config.runs(), workers=2, timeout=3.0, on_result=results.append, run=_fake_run)
     assert time.monotonic() - start < 40
     assert sorted(r.spec.key() for r in results) == sorted(s.key() for s in config.runs())
     by_seed = {}
@@ -238,7 +239,7 @@ def test_a_grip_by_mass_map_carries_the_coulomb_limit(tmp_path):
 
 
 def test_a_refused_ray_connection_says_what_to_set(monkeypatch):
-    from pyramid_sim.sweep.ray_backend import ray_connection_advice
+    from pyramid_sim.jobs.ray_session import ray_connection_advice
 
     monkeypatch.delenv("RAY_AUTH_MODE", raising=False)
     text = ray_connection_advice(
@@ -283,10 +284,10 @@ def test_a_sweep_folder_compares_the_two_schedules(tmp_path):
 def test_rays_native_noise_is_held_back_only_for_a_refused_connection(capfd, raised, shown):
     """Output written straight to file descriptor 2 while connecting (as Ray's C++ core does)
     is dropped when the cluster refuses the connection, and passed on otherwise."""
-    from pyramid_sim.sweep import ray_backend
+    from pyramid_sim.jobs import ray_session
 
     try:
-        with ray_backend.native_stderr_held(True):
+        with ray_session.native_stderr_held(True):
             os.write(2, b"native retry warning\n")
             if raised is not None:
                 raise raised("refused" if raised is ConnectionError else "other")
@@ -426,7 +427,7 @@ def test_ray_not_installed_is_refused_before_anything_runs(monkeypatch):
     import importlib.util
 
     from pyramid_sim.errors import MachineError
-    from pyramid_sim.sweep.grid import check_backend
+    from pyramid_sim.jobs.backends import check_backend
 
     real = importlib.util.find_spec
     monkeypatch.setattr(

@@ -330,3 +330,86 @@ def test_replaying_a_recorded_episodes_actions_builds_its_structure(state_only):
     assert terminated and info["is_success"] and placed == 2
     assert info["result"]["bricks_placed"] == 2  # judged from where the bricks lie
     env.close()
+
+
+def test_lerobots_info_holds_only_its_own_keys_and_ours_live_under_meta_pyramid_sim(dataset):
+    """An extra key in info.json made lerobot 0.6 warn "Unknown fields" and drop it."""
+    root, _ = dataset
+    info = json.loads((root / "meta/info.json").read_text())
+    lerobots = {"codebase_version", "robot_type", "total_episodes", "total_frames",
+                "total_tasks", "chunks_size", "data_files_size_in_mb", "video_files_size_in_mb",
+                "fps", "splits", "data_path", "video_path", "features"}  # fmt: skip
+    assert set(info) == lerobots
+    ours = json.loads((root / "meta/pyramid_sim/dataset.json").read_text())
+    assert ours["structure"] == "pyramid" and ours["version"] == pyramid_sim.__version__
+    assert ours["lerobot_version"] == "0.6.1" and ours["cameras"].keys() == set(CAMERAS)
+    tasks = pq.read_schema(root / "meta/tasks.parquet")
+    pandas_meta = json.loads(tasks.metadata[b"pandas"])
+    assert pandas_meta["index_columns"] == ["task"] and "pandas_version" not in pandas_meta
+
+
+def test_each_landing_rewrites_only_its_own_episodes_file(tmp_path, monkeypatch):
+    """The metadata grows as episodes land, not rebuilt whole: with a file a episode, each
+    landing writes one row, and the episodes' rows still read back as the dataset's."""
+    from pyramid_sim.learning import lerobot_meta
+
+    monkeypatch.setattr(lerobot_meta, "EPISODES_PER_FILE", 1)
+    written: list[list[int]] = []
+    write = lerobot_meta.write_episodes_file
+
+    def spy(root, rows, task):
+        written.append([r["episode_index"] for r in rows])
+        write(root, rows, task)
+
+    monkeypatch.setattr(lerobot_meta, "write_episodes_file", spy)
+    recorded = pyramid_sim.record(
+        tmp_path / "d", "pyramid", layers=1, episodes=3, cameras=(), image_size=SIZE
+    )
+    assert written == [[0], [1], [2]]
+    rows = [
+        pq.read_table(tmp_path / f"d/meta/episodes/chunk-000/file-{e:03d}.parquet").to_pylist()
+        for e in range(3)
+    ]
+    assert [r[0]["episode_index"] for r in rows] == [0, 1, 2]
+    assert [r[0]["meta/episodes/file_index"] for r in rows] == [0, 1, 2]
+    assert rows[2][0]["dataset_to_index"] == recorded.frames
+
+
+def test_resuming_with_another_image_size_is_refused_leaving_the_dataset_as_it_was(
+    dataset, tmp_path
+):
+    """Its videos would no longer match info.json."""
+    root, _ = dataset
+    import shutil
+
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    before = {p: p.read_bytes() for p in copy.rglob("*") if p.is_file()}
+    with pytest.raises(pyramid_sim.ConfigError, match=r"image_size \[48, 64\], this run \[32, 32\]"):
+        pyramid_sim.record(
+            copy, "pyramid", layers=1, episodes=3, cameras=CAMERAS, image_size=(32, 32)
+        )
+    assert {p: p.read_bytes() for p in copy.rglob("*") if p.is_file()} == before
+
+
+def test_ctrl_c_during_a_parallel_recording_stops_at_once_and_leaves_nothing(tmp_path):
+    import signal
+    import time
+
+    out = tmp_path / "new"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "pyramid_sim.cli", "record", "--structure", "pyramid",
+         "--layers", "1", "--episodes", "2", "--workers", "2", "--cameras", "overview",
+         "--image-size", "32", "--quiet", "--out", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    deadline = time.monotonic() + 120
+    while not list(out.glob(".staging/episode_*/videos")) and time.monotonic() < deadline:
+        time.sleep(0.1)  # both workers are filming
+    assert proc.poll() is None
+    start = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert time.monotonic() - start < 3.0, err
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert not out.exists(), sorted(str(p) for p in out.rglob("*"))

@@ -3,15 +3,16 @@
 Each episode gets its own data file and its own video file a camera (`chunk-C/file-F`, F the
 episode's index within its chunk of 1000), as lerobot's own writer does once a file is full.
 An episode's frames are indexed from 0 as it is written; `staging.land` places them in the
-dataset. Files are written under temporary names and renamed into place, and the
-metadata (`meta/info.json`, `meta/stats.json`, `meta/tasks.parquet`,
-`meta/episodes/chunk-000/file-000.parquet`) is rewritten whole after each episode. A record
-killed at any moment leaves the episodes it finished, loadable.
+dataset. Files are written under temporary names ending in `.part` (no reader's glob sees
+them) and renamed into place (output/files.py); the metadata is kept by lerobot_meta.py. A
+record killed at any moment leaves the episodes it finished, loadable.
+
+The layout is that of LeRobot's v3.0 datasets as `LEROBOT_VERSION`'s reader and tools read
+them (the round trip in .ci/lerobot_round_trip installs that release and trains on a recording).
 """
 
 from __future__ import annotations
 
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,11 +22,13 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from ..output.files import move_into_place, temporary_beside
+
 CODEBASE_VERSION = "v3.0"
+LEROBOT_VERSION = "0.6.1"  # the lerobot release whose reader the format is held to
 CHUNK_SIZE = 1000  # files a chunk folder, as lerobot's default
 DATA_PATH = "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
 VIDEO_PATH = "videos/{video_key}/chunk-{chunk_index:03d}/file-{file_index:03d}.mp4"
-EPISODES_PATH = "meta/episodes/chunk-000/file-000.parquet"
 QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
 STATS_EVERY = 5  # a video's statistics sample every fifth frame, a quarter of its pixels
 VIDEO_CODEC = "h264"  # libx264, yuv420p: decoded by PyAV and torchcodec alike
@@ -105,8 +108,7 @@ class EpisodeFiles:
         if key not in self._videos:
             chunk, file = location(self.episode)
             final = self.root / VIDEO_PATH.format(video_key=key, chunk_index=chunk, file_index=file)
-            tmp = final.with_name(f".{final.name}.part")  # matches no reader's glob
-            tmp.parent.mkdir(parents=True, exist_ok=True)
+            tmp = temporary_beside(final, suffix=".part")
             container = av.open(str(tmp), mode="w", format="mp4")
             stream = container.add_stream("libx264", rate=self.fps)
             stream.width, stream.height = image.shape[1], image.shape[0]
@@ -134,8 +136,7 @@ class EpisodeFiles:
             container.close()
         chunk, file = location(self.episode)
         data = self.root / DATA_PATH.format(chunk_index=chunk, file_index=file)
-        tmp = data.with_name(f".{data.name}.part")
-        tmp.parent.mkdir(parents=True, exist_ok=True)
+        tmp = temporary_beside(data, suffix=".part")
         pq.write_table(self._table(length), tmp, compression="snappy")
         self._temporary.append((tmp, data))
         row: dict[str, Any] = {
@@ -161,7 +162,7 @@ class EpisodeFiles:
     def commit(self) -> None:
         """The episode's files under their own names: readers see the episode from now."""
         for tmp, final in self._temporary:
-            os.replace(tmp, final)
+            move_into_place(tmp, final)
 
     def abort(self) -> None:
         """Drop what was written of an episode that will not finish."""

@@ -4,12 +4,14 @@ An episode is one whole build from its seed (`first_seed + episode`), kept at `f
 cameras asked for. Re-running adds only the episodes missing; an episode is in the dataset
 once its files and its record (`meta/pyramid_sim/episode_NNNNNN.json`: its seed, success and
 result.json) are in place, which happens together, Ctrl-C and SIGTERM held for that moment.
+Resuming refuses a folder recorded with other settings, since they shape the files.
 """
 
 from __future__ import annotations
 
 import json
 import shutil
+from bisect import bisect_left
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -17,19 +19,22 @@ from typing import Any
 
 from ..config import MotionConfig
 from ..errors import ConfigError
+from ..jobs.backends import check_backend
 from ..output.files import write_atomic
 from ..output.video import signals_held
-from ..sweep.grid import check_backend
 from ..version import __version__
 from . import lerobot_format as fmt
+from . import lerobot_meta as meta
 from .env import BuildEnv
 from .episode import PRIMITIVES, Frame, expert_episode, task_text
 from .layout import BRICK_FIELDS, camera_names, check_cameras, check_image_size, control_steps
-from .lerobot_meta import write_meta
-from .staging import STAGING, land, staged
+from .staging import STAGING, land, staged, staging_folder
 from .variation import DEFAULT_LEVEL, check_differ, check_level
 
-RECORDS = "meta/pyramid_sim"
+RECORDS = "meta/pyramid_sim"  # pyramid_sim's own files, where lerobot does not look
+DATASET_DOC = f"{RECORDS}/dataset.json"
+# What may differ between the runs that fill one dataset: none of it shapes an episode's files.
+RUN_ONLY = ("episodes", "workers", "backend", "ray_address")
 
 
 @dataclass(frozen=True)
@@ -154,34 +159,44 @@ def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
 def record(
     out: Path, config: RecordConfig, on_frame: Callable[[int, int], Any] | None = None
 ) -> Recorded:
-    """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame."""
+    """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame
+    (with workers, once an episode lands, with all its frames)."""
     env = make_env(config)
     check_cameras(config.cameras, env.config.robot_description)
     check_differ(
         config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
     )
     feats = features(env, config)
-    robot = env.config.robot_description.name
+    robot_type = f"{env.config.robot_description.name}_bimanual"
     task = task_text(env)
-    extra = _dataset_extra(env, config)
     records = _records(out)
-    _check_same_recording(out, records, task, config, feats)
+    _check_same_recording(out, records, config)
     _clear_unrecorded(out, set(records))
-    meta: dict[str, Any] = {
-        "fps": config.fps,
-        "robot_type": f"{robot}_bimanual",
-        "features": feats,
-        "task": task,
-        "extra": extra,
-    }
+    stats = meta.aggregate([r["row"] for r in records.values()]) if records else None
+    frames_before = _FramesBefore({i: r["row"]["length"] for i, r in records.items()})
     added = 0
     missing = [e for e in range(config.episodes) if e not in records]
+
+    def film_here(episode: int) -> dict[str, Any]:
+        return film_staged(env, config, episode, out, on_frame)
+
     try:
-        for result in staged(config, env, missing, out, config.workers, on_frame):
+        for result in staged(
+            missing,
+            out,
+            film_here,
+            FilmAway(config),
+            workers=config.workers,
+            backend=config.backend,
+            address=config.ray_address,
+        ):
             episode, end = result["episode"], result["end"]
-            first = sum(r["row"]["length"] for i, r in records.items() if i < episode)
+            if config.workers > 1 or config.backend == "ray":
+                if on_frame is not None:
+                    on_frame(episode, result["row"]["length"])
             with signals_held():  # the files and the record land together
-                row = land(out, result, first)
+                row = land(out, result, frames_before(episode))
+                frames_before.add(episode, row["length"])
                 records[episode] = {
                     "episode_index": episode,
                     "seed": config.first_seed + episode,
@@ -192,64 +207,135 @@ def record(
                     "failure": end.failure,
                     "randomization": result["randomization"],
                     "result": end.result,
-                    "config": asdict(config),
+                    "config": _settings(config),
                     "row": _jsonable(row),
                 }
                 _write_text(
                     out / RECORDS / f"episode_{episode:06d}.json",
                     json.dumps(records[episode], indent=1) + "\n",
                 )
-                write_meta(out, [r["row"] for r in records.values()], **meta)
+                if added == 0:  # this run's first: the files every episode shares
+                    meta.write_tasks(out, task)
+                    _write_text(
+                        out / DATASET_DOC, json.dumps(_dataset_doc(env, config), indent=1) + "\n"
+                    )
+                stats = meta.merge_stats(stats, row["stats"])
+                meta.write_stats(out, stats)
+                group = meta.episodes_location(episode)
+                meta.write_episodes_file(
+                    out,
+                    [r["row"] for i, r in records.items() if meta.episodes_location(i) == group],
+                    task,
+                )
+                meta.write_info(out, len(records), frames_before.total, config.fps,
+                                robot_type, feats)  # fmt: skip
             added += 1
     finally:
         env.close()
         shutil.rmtree(out / STAGING, ignore_errors=True)
-    frames = sum(r["row"]["length"] for r in records.values())
     failed = tuple(sorted(i for i, r in records.items() if not r["success"]))
-    return Recorded(out, len(records), frames, added, failed)
+    return Recorded(out, len(records), frames_before.total, added, failed)
 
 
-def _dataset_extra(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
-    """What info.json says of the recording beyond LeRobot's own keys (lerobot ignores it)."""
+class _FramesBefore:
+    """How many frames the dataset holds before an episode, kept as episodes land (each
+    answer costs no more than the episodes landed since the last)."""
+
+    def __init__(self, lengths: dict[int, int]) -> None:
+        self.lengths = dict(lengths)
+        self.order = sorted(lengths)
+        self.total = sum(lengths.values())
+
+    def __call__(self, episode: int) -> int:
+        at = bisect_left(self.order, episode)
+        after = sum(self.lengths[i] for i in self.order[at:])  # none, landing in order
+        return self.total - after
+
+    def add(self, episode: int, length: int) -> None:
+        self.order.insert(bisect_left(self.order, episode), episode)
+        self.lengths[episode] = length
+        self.total += length
+
+
+def film_staged(
+    env: BuildEnv,
+    config: RecordConfig,
+    episode: int,
+    out: Path,
+    on_frame: Callable[[int, int], Any] | None = None,
+) -> dict[str, Any]:
+    """Film one episode into its staging folder under `out`: how it ended, its draw and its
+    row (frames indexed from 0)."""
+    root = staging_folder(out, episode)
+    shutil.rmtree(root, ignore_errors=True)
+    files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
+    end, row = film_episode(env, files, config, on_frame)
+    files.commit()  # into the staging folder: the dataset sees nothing yet
+    return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
+
+
+_WORKER_ENV: dict[str, BuildEnv] = {}
+
+
+@dataclass(frozen=True)
+class FilmAway:
+    """An episode filmed in a worker process or a Ray task, its environment made once per
+    process (picklable: the stager hands it to the job runner)."""
+
+    config: RecordConfig
+
+    def __call__(self, episode: int, out: Path) -> dict[str, Any]:
+        if "env" not in _WORKER_ENV:
+            _WORKER_ENV["env"] = make_env(self.config)
+        return film_staged(_WORKER_ENV["env"], self.config, episode, out)
+
+
+def _settings(config: RecordConfig) -> dict[str, Any]:
+    """The recording's settings as its episode records keep them (JSON's types)."""
+    doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
+    return doc
+
+
+def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
+    """What pyramid_sim says of the recording beyond lerobot's keys (meta/pyramid_sim/)."""
     spec = env.plan.spec
     named = camera_names(env.config.robot_description)
     return {
-        "pyramid_sim": {
-            "version": __version__,
-            "structure": spec.name,
-            "size": dict(spec.size),
-            "primitives": list(PRIMITIVES),
-            "first_seed": config.first_seed,
-            "variation": config.variation,
-            "randomize": list(env.randomize),
-            "limit_commands": config.limit_commands,
-            "cameras": {c: n for c, n in named.items() if c in config.cameras},
-        }
+        "version": __version__,
+        "lerobot_version": fmt.LEROBOT_VERSION,
+        "structure": spec.name,
+        "size": dict(spec.size),
+        "primitives": list(PRIMITIVES),
+        "first_seed": config.first_seed,
+        "variation": config.variation,
+        "randomize": list(env.randomize),
+        "limit_commands": config.limit_commands,
+        "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
 
 
 def _check_same_recording(
-    out: Path,
-    records: dict[int, dict[str, Any]],
-    task: str,
-    config: RecordConfig,
-    feats: dict[str, fmt.Feature],
+    out: Path, records: dict[int, dict[str, Any]], config: RecordConfig
 ) -> None:
-    """ConfigError if `out` holds episodes of another structure, rate or features."""
-    for index, rec in records.items():
-        variation = rec.get("config", {}).get("variation", config.variation)
-        if (
-            rec["task"] != task
-            or rec["fps"] != config.fps
-            or rec["features"] != list(feats)
-            or variation != config.variation
-        ):
+    """ConfigError if `out` holds episodes recorded with other settings (the structure, its
+    size and build settings, the frame rate, cameras, image size, variation, randomized
+    parts, first seed, command limits): each shapes the files, and a dataset is one recording."""
+    wanted = _settings(config)
+    for index, rec in sorted(records.items()):
+        kept = rec.get("config", {})
+        for name in wanted:
+            if name in RUN_ONLY or kept.get(name) == wanted[name]:
+                continue
             raise ConfigError(
-                f"out: {str(out)!r} holds episodes of another recording (episode {index}: "
-                f"{rec['task']!r} at {rec['fps']} fps, variation {variation}); accepted a new "
-                "folder or the same "
-                "recording's"
+                f"out: {str(out)!r} holds episodes of another recording (episode {index} has "
+                f"{name} {_short(kept.get(name))}, this run {_short(wanted[name])}); accepted a "
+                "new folder, or the same recording's settings"
             )
+
+
+def _short(value: Any) -> str:
+    text = json.dumps(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def film_episode(

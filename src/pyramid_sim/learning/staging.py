@@ -1,15 +1,17 @@
 """Episodes filmed apart and landed in order: each is written into a staging folder of its
-own (in this process or in a worker's), its frames indexed from 0; landing moves its files
-into the dataset and shifts its frames' dataset-wide index to where it falls, so episodes
-filmed in parallel make the dataset a serial run would."""
+own (in this process, in a worker process, or in a Ray task on any node), its frames indexed
+from 0; landing moves its files into the dataset and shifts its frames' dataset-wide index to
+where it falls, so episodes filmed in parallel make the dataset a serial run would.
+
+The stager knows nothing of what an episode is: it is handed the function that films one.
+"""
 
 from __future__ import annotations
 
-import multiprocessing
-import os
 import shutil
+import tempfile
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -17,85 +19,103 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from ..errors import PyramidSimError
+from ..jobs.runner import run_jobs
+from ..output.files import atomic_path, move_into_place
 from . import lerobot_format as fmt
 
 STAGING = ".staging"
-OnFrame = Callable[[int, int], Any]
+# The films: here, an episode and the progress callback; away (a picklable callable), an
+# episode and the folder whose staging area it is filmed into. Each returns the episode's result.
+FilmHere = Callable[[int], dict[str, Any]]
+FilmAway = Callable[[int, Path], dict[str, Any]]
 
 
 def staging_folder(out: Path, episode: int) -> Path:
     return out / STAGING / f"episode_{episode:06d}"
 
 
-def film_staged(
-    config: Any, env: Any, episode: int, out: Path, on_frame: OnFrame | None = None
-) -> dict[str, Any]:
-    """Film one episode into its staging folder: how it ended, its draw and its row (frames
-    indexed from 0)."""
-    from .record import features, film_episode
+@dataclass(frozen=True)
+class _FilmInto:
+    """A worker's job: film an episode into `out`'s staging area (a folder this machine
+    shares with its worker processes)."""
 
-    root = staging_folder(out, episode)
-    shutil.rmtree(root, ignore_errors=True)
-    files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
-    end, row = film_episode(env, files, config, on_frame)
-    files.commit()  # into the staging folder: the dataset sees nothing yet
-    return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
+    film: FilmAway
+    out: Path
+
+    def __call__(self, episode: int) -> dict[str, Any]:
+        return self.film(episode, self.out)
 
 
-_WORKER_ENV: dict[str, Any] = {}
+@dataclass(frozen=True)
+class _FilmShipped:
+    """A Ray task's job: film an episode into a temporary folder on its own node and hand back
+    its staged files' bytes, so the dataset's machine needs no disk shared with the nodes."""
+
+    film: FilmAway
+
+    def __call__(self, episode: int) -> dict[str, Any]:
+        with tempfile.TemporaryDirectory(prefix="pyramid-sim-episode-") as tmp:
+            result = self.film(episode, Path(tmp))
+            root = staging_folder(Path(tmp), episode)
+            result["files"] = {
+                str(path.relative_to(root)): path.read_bytes()
+                for path in sorted(root.rglob("*"))
+                if path.is_file()
+            }
+        return result
 
 
-def film_in_worker(config: Any, episode: int, out: Path) -> dict[str, Any]:
-    """A worker process's episode (a pool's or Ray's), its environment made once per process."""
-    from .record import make_env
-
-    if "env" not in _WORKER_ENV:
-        os.environ.setdefault("OMP_NUM_THREADS", "1")
-        _WORKER_ENV["env"] = make_env(config)
-    return film_staged(config, _WORKER_ENV["env"], episode, out)
+def _unpack(out: Path, result: dict[str, Any]) -> dict[str, Any]:
+    """A shipped episode's files written into its staging folder here; its result, files gone."""
+    root = staging_folder(out, result["episode"])
+    for name, content in result.pop("files").items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(content)
+    return result
 
 
 def staged(
-    config: Any,
-    env: Any,
     episodes: Iterable[int],
     out: Path,
-    workers: int,
-    on_frame: OnFrame | None = None,
+    film_here: FilmHere,
+    film_away: FilmAway,
+    *,
+    workers: int = 1,
+    backend: str = "process",
+    address: str | None = None,
 ) -> Iterator[dict[str, Any]]:
-    """The episodes filmed, yielded in episode order: here one after another, or on
-    `workers` processes or Ray tasks (`config.backend`; each frame's progress is then told
-    only when its episode lands)."""
+    """The episodes filmed, yielded in episode order: here one after another, or by the job
+    runner on `workers` processes or Ray tasks (`backend`, on the cluster at `address`). An
+    episode whose worker crashed raises PyramidSimError naming it, after those before it."""
     todo = list(episodes)
-    if config.backend == "ray":
-        from .ray_staging import ray_staged
-
-        for result in ray_staged(config, todo, out, workers, config.ray_address):
-            if on_frame is not None:
-                on_frame(result["episode"], result["row"]["length"])
-            yield result
-        return
-    if workers <= 1:
+    if backend != "ray" and workers <= 1:
         for episode in todo:
-            yield film_staged(config, env, episode, out, on_frame)
+            yield film_here(episode)
         return
-    context = multiprocessing.get_context("spawn")  # no GL or MuJoCo state forked
-    with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-        running = {pool.submit(film_in_worker, config, e, out): e for e in todo}
-        done: dict[int, dict[str, Any]] = {}
-        try:
-            for episode in todo:
-                while episode not in done:
-                    finished, _ = wait(running, return_when=FIRST_COMPLETED)
-                    for future in finished:
-                        done[running.pop(future)] = future.result()
-                result = done.pop(episode)
-                if on_frame is not None:
-                    on_frame(episode, result["row"]["length"])
-                yield result
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+    ray = backend == "ray"
+    work = _FilmShipped(film_away) if ray else _FilmInto(film_away, out)
+    ends = run_jobs(
+        work,
+        todo,
+        workers=workers,
+        backend=backend,
+        address=address,
+        warm=("pyramid_sim.learning.env",),
+    )
+    done: dict[int, Any] = {}
+    try:
+        for episode in todo:
+            while episode not in done:
+                end = next(ends)
+                done[end.job] = end
+            end = done.pop(episode)
+            if end.failure is not None:
+                raise PyramidSimError(f"episode {episode}: {end.failure}")
+            yield _unpack(out, end.value) if ray else end.value
+    finally:
+        ends.close()  # an interrupt, or a failure, stops every worker at once
 
 
 def land(out: Path, result: dict[str, Any], first: int) -> dict[str, Any]:
@@ -110,15 +130,10 @@ def land(out: Path, result: dict[str, Any], first: int) -> dict[str, Any]:
     table = table.set_column(
         table.schema.get_field_index("index"), "index", pa.array(index, type=pa.int64())
     )
-    target = out / data
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = target.with_name(f".{target.name}.part")
-    pq.write_table(table, tmp, compression="snappy")
-    os.replace(tmp, target)
+    with atomic_path(out / data, suffix=".part") as tmp:
+        pq.write_table(table, tmp, compression="snappy")
     for video in root.glob("videos/*/*/*.mp4"):
-        final = out / video.relative_to(root)
-        final.parent.mkdir(parents=True, exist_ok=True)
-        os.replace(video, final)
+        move_into_place(video, out / video.relative_to(root))
     shutil.rmtree(root, ignore_errors=True)
     row["dataset_from_index"], row["dataset_to_index"] = first, first + row["length"]
     stats = dict(row["stats"])

@@ -18,19 +18,23 @@ from typing import Any
 from ..errors import ConfigError
 
 
-def temporary_beside(path: Path) -> Path:
-    """A new empty file next to `path` (same folder, so the final rename is atomic)."""
+def temporary_beside(path: Path, suffix: str | None = None) -> Path:
+    """A new empty file next to `path` (same folder, so the final rename is atomic), ending in
+    `path`'s suffix (writers that read the format from the name) or in `suffix` (".part" in a
+    dataset, so no reader's glob sees it)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
+    ending = path.suffix if suffix is None else suffix
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=ending, dir=path.parent)
     os.close(fd)
     os.chmod(tmp, 0o644)  # mkstemp makes it private; the finished file is an ordinary one
     return Path(tmp)
 
 
 @contextmanager
-def atomic_path(path: Path) -> Iterator[Path]:
-    """Yield a temporary path to write; on success it becomes `path`, on any error it goes."""
-    tmp = temporary_beside(path)
+def atomic_path(path: Path, suffix: str | None = None) -> Iterator[Path]:
+    """Yield a temporary path to write (named as `temporary_beside` names it); on success it
+    becomes `path`, on any error it goes."""
+    tmp = temporary_beside(path, suffix)
     try:
         yield tmp
         os.replace(tmp, path)
@@ -67,10 +71,17 @@ def atomic_dir(path: Path) -> Iterator[Path]:
             shutil.rmtree(aside, ignore_errors=True)
 
 
-def write_atomic(path: Path, write: Callable[[Path], object]) -> None:
+def write_atomic(path: Path, write: Callable[[Path], object], suffix: str | None = None) -> None:
     """Call `write(tmp)` and move the finished file to `path`."""
-    with atomic_path(path) as tmp:
+    with atomic_path(path, suffix) as tmp:
         write(tmp)
+
+
+def move_into_place(source: Path, target: Path) -> None:
+    """A finished file (written beside `target`, or in a staging folder on the same disk)
+    renamed to `target` in one step."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    os.replace(source, target)
 
 
 def write_json_atomic(path: Path, document: dict[str, Any]) -> None:

@@ -24,8 +24,8 @@ from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 from ..robots import DEFAULT_ROBOT
-from ..sweep.backends import RunResult, run_processes
 from ..sweep.grid import SweepRun
+from ..sweep.runs import RunResult, run_builds
 from .targets import BUILD_TO_REPLAY, structure_label
 from .timers import ik_floor_calls, timed_calls, timed_parts
 
@@ -232,7 +232,7 @@ def sweep_rate(
     runs = [SweepRun(spec, "both", (), seed, 0.0, robot) for seed in range(builds)]
     results: list[RunResult] = []
     start = time.perf_counter()
-    run_processes(runs, workers, timeout=3600.0, on_result=results.append)
+    run_builds(runs, workers, timeout=3600.0, on_result=results.append)
     wall = time.perf_counter() - start
     return builds * 3600.0 / wall, sum(bool(r.row["success"]) for r in results)
 

@@ -1,4 +1,4 @@
-"""Parameter sweeps: the grid, the runners (worker processes or Ray), the resumable CSV, and
+"""Parameter sweeps: the grid, its builds (run by jobs/runner.py on worker processes or Ray), the resumable CSV, and
 the plots.
 
 Importing the package imports none of its modules (a run needs MuJoCo, the grid does not);
@@ -6,12 +6,11 @@ Importing the package imports none of its modules (a run needs MuJoCo, the grid 
 """
 
 __all__ = [
-    "backends",
     "grid",
     "heatmaps",
     "lines",
-    "ray_backend",
     "report",
     "run",
+    "runs",
     "store",
 ]

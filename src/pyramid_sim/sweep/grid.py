@@ -10,10 +10,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES, ArmChoice, RobotName, Schedule
+from ..choices import ARM_CHOICES, SCHEDULES, ArmChoice, RobotName, Schedule
 from ..config import SimConfig
 from ..core.structures import StructureSpec
-from ..errors import ConfigError, MachineError
+from ..errors import ConfigError
+from ..jobs.backends import check_backend
 from ..params import PARAMS, check_range, param
 from ..robots import DEFAULT_ROBOT
 
@@ -103,28 +104,6 @@ class SweepRun:
             *(value_text(v) for _, v in self.params),
             value_text(self.spawn_jitter_mm),
             str(self.seed),
-        )
-
-
-def check_backend(backend: str, ray_address: str | None) -> None:
-    """ConfigError for an unknown backend, or a Ray address without Ray; MachineError for Ray
-    when it is not installed (a sweep's builds and a recording's episodes run on the same
-    backends), before anything runs."""
-    if backend not in BACKENDS:
-        raise ConfigError(f"backend: unknown {backend!r}; accepted {', '.join(BACKENDS)}")
-    if ray_address is not None and backend != "ray":
-        raise ConfigError("ray address: only with --backend ray")
-    if backend == "ray":
-        require_ray()
-
-
-def require_ray() -> None:
-    """MachineError, before anything runs, when the ray extra is not installed."""
-    import importlib.util
-
-    if importlib.util.find_spec("ray") is None:
-        raise MachineError(
-            "backend: ray is not installed; accepted process, or ray after pip install -e '.[ray]'"
         )
 
 

@@ -7,11 +7,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from .backends import RunResult, run_processes
 from .grid import SweepConfig, value_text
 from .heatmaps import write_heatmaps
-from .ray_backend import run_ray
 from .report import grid_rows, group_rows, plot_path, summary_table
+from .runs import RunResult, run_builds
 from .store import SweepRow, SweepStore
 
 
@@ -49,10 +48,7 @@ def run_sweep(
             on_row(result)
 
     if todo:
-        if config.backend == "ray":
-            run_ray(todo, config.workers, config.timeout, record, config.ray_address)
-        else:
-            run_processes(todo, config.workers, config.timeout, record)
+        run_builds(todo, config.workers, config.timeout, record, config.backend, config.ray_address)
     return grid_rows(store.rows, config), len(todo)
 
 

@@ -1,5 +1,5 @@
-"""The Ray backend of a sweep: the same runs as Ray tasks, on a local Ray instance or a
-cluster, and the one line a cluster that refuses us gets."""
+"""A Ray session for the runner's Ray backend: a local Ray instance or a cluster, and the one
+line a cluster that refuses us gets."""
 
 from __future__ import annotations
 
@@ -7,14 +7,10 @@ import contextlib
 import os
 import sys
 import tempfile
-import time
-from collections import deque
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 from ..errors import PyramidSimError
-from .backends import OnResult, failed, run_one
-from .grid import SweepRun
 
 
 def ray_connection_advice(address: str | None, err: Exception) -> str:
@@ -88,41 +84,3 @@ def ray_session(address: str | None, workers: int) -> Iterator[Any]:
     finally:
         if started_here:
             ray.shutdown()
-
-
-def run_ray(
-    specs: Iterable[SweepRun],
-    workers: int,
-    timeout: float,
-    on_result: OnResult,
-    address: str | None = None,
-) -> None:
-    """Run every spec as a Ray task, at most `workers` at once, on a local Ray instance (started
-    with `workers` CPUs) or the cluster at `address`; the nodes need pyramid_sim installed."""
-    with ray_session(address, workers) as ray:
-        task = ray.remote(num_cpus=1, max_retries=0)(run_one)
-        pending = deque(specs)
-        running: dict[Any, tuple[SweepRun, float]] = {}
-        try:
-            while pending or running:
-                while pending and len(running) < workers:
-                    spec = pending.popleft()
-                    running[task.remote(spec)] = (spec, time.monotonic())
-                wait = min(start + timeout for _, start in running.values()) - time.monotonic()
-                ready, _ = ray.wait(list(running), num_returns=1, timeout=max(0.0, wait))
-                for ref in ready:
-                    spec, start = running.pop(ref)
-                    try:
-                        on_result(ray.get(ref))
-                    except ray.exceptions.RayError as err:
-                        reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
-                        on_result(failed(spec, reason, time.monotonic() - start))
-                for ref, (spec, start) in list(running.items()):
-                    if time.monotonic() - start > timeout:
-                        ray.cancel(ref, force=True)
-                        del running[ref]
-                        reason = f"timeout: still running after {timeout:g} s"
-                        on_result(failed(spec, reason, timeout))
-        finally:
-            for ref in running:
-                ray.cancel(ref, force=True)

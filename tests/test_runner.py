@@ -1,0 +1,75 @@
+"""The job runner sweeps and recordings share: crashes, exceptions and timeouts end a job as a
+failure naming why, the timeout counts from when the worker is ready, workers run one BLAS
+thread, and closing the run stops every worker at once."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from pyramid_sim.errors import PyramidSimError
+from pyramid_sim.jobs.runner import run_jobs
+
+pytestmark = pytest.mark.processes
+
+
+# Stand-ins for a job, run in spawned workers (importable by name from this module).
+def _work(job: int) -> dict:
+    if job == 1:
+        os._exit(3)
+    if job == 2:
+        time.sleep(60)
+    if job == 3:
+        raise ValueError("no such brick")
+    return {"job": job, "pid": os.getpid(), "blas": os.environ.get("OPENBLAS_NUM_THREADS")}
+
+
+def _sleepy(job: int) -> int:
+    time.sleep(job)
+    return os.getpid()
+
+
+def test_crashes_exceptions_and_timeouts_end_as_failures_and_the_others_go_on():
+    ends = {e.job: e for e in run_jobs(_work, [0, 1, 2, 3, 4], workers=2, timeout=2.0)}
+    assert sorted(ends) == [0, 1, 2, 3, 4]
+    assert ends[0].failure is None and ends[0].value["job"] == 0
+    assert ends[4].value["job"] == 4
+    assert ends[1].value is None
+    assert ends[1].failure == "crashed: the worker process ended (exit status 3)"
+    assert ends[2].failure == "timeout: still running after 2 s"
+    assert ends[3].failure == "crashed: ValueError: no such brick"
+
+
+def test_workers_run_one_blas_thread_and_the_parent_keeps_its_own(monkeypatch):
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    (end,) = run_jobs(_work, [0], workers=1)
+    assert end.value["blas"] == "1"
+    assert end.value["pid"] != os.getpid()
+    assert "OPENBLAS_NUM_THREADS" not in os.environ
+
+
+def test_the_timeout_counts_from_when_the_worker_is_ready(tmp_path, monkeypatch):
+    """A worker whose imports take 3 s still has its whole 2 s for a job of 0.5 s."""
+    (tmp_path / "slow_import_for_runner.py").write_text("import time\ntime.sleep(3)\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    ends = list(run_jobs(_sleepy, [0.5], workers=1, timeout=2.0, warm=("slow_import_for_runner",)))
+    assert ends[0].failure is None
+    assert 0.5 <= ends[0].wall_s < 2.0
+
+
+def test_a_worker_that_cannot_start_is_one_error_not_an_endless_respawn():
+    with pytest.raises(PyramidSimError, match="failed to start"):
+        list(run_jobs(_work, [0], workers=1, warm=("no_such_module_anywhere",)))
+
+
+def test_closing_the_run_stops_every_worker_at_once():
+    ends = run_jobs(_sleepy, [0.0, 60.0, 60.0], workers=2)
+    first = next(ends)
+    pid = first.value
+    start = time.monotonic()
+    ends.close()  # as an interrupt in the caller's loop does
+    assert time.monotonic() - start < 2.0
+    with pytest.raises(ProcessLookupError):
+        os.kill(pid, 0)
