@@ -22,10 +22,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "pyramid_sim"
 DESIGN = ROOT / "docs" / "design.md"
-START = (
-    "<!-- map:start (made by scripts/design_map.py from the module docstrings: edit those and "
-    "run it, not this) -->"
-)
+START = "<!-- map:start: made by scripts/design_map.py from the docstrings; edit those -->"
 END = "<!-- map:end -->"
 WIDTH = 100
 NO_DOCSTRING = "(no docstring)"

@@ -24,13 +24,14 @@ BRICK_MANAGER_BRICK = BrickConfig(
 TABLE_Z = 0.11
 
 
-# The Brick Manager's own function, as its authors wrote it: the reference `wall_pyramid` is held to.
+# The Brick Manager's own function, as its authors wrote it: the reference `wall_pyramid` is
+# held to.
 def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[float]]:
-    """The Brick Manager's `goal_manager_server3` wall pyramid, its own numbers: a parallelogram of
-    bricks end to end along x (pitch blength + tol, courses bheight + tol apart, each course
-    shifted by half a brick), with the overhanging ends of each course peeled away. The Brick
-    Manager spelled out heights 1 to 5 by hand; this follows the same rule for any height (the loop's
-    length, not shown there, is one course per height)."""
+    """The Brick Manager's `goal_manager_server3` wall pyramid, its own numbers: a
+    parallelogram of bricks end to end along x (pitch blength + tol, courses bheight + tol
+    apart, each course shifted by half a brick), with the overhanging ends of each course peeled
+    away. The Brick Manager spelled out heights 1 to 5 by hand; this follows the same rule for
+    any height (the loop's length, not shown there, is one course per height)."""
     bstart = [1, -0.8, 0.116, 0, 0, math.pi / 2]
     blength, bheight = 0.2 + SEED_WALL_TOLERANCE, 0.06 + SEED_WALL_TOLERANCE
     square_number = wall_base_width * wall_height
@@ -55,8 +56,9 @@ def goal_manager_server3(wall_base_width: int, wall_height: int) -> list[list[fl
             offset += 1
     if wall_height == 1:
         return pyramid_seperate
-    # The Brick Manager's peel, generalised: the first slice keeps the base course and the first brick
-    # of the next (its `[:(w*2)-1]`), each later slice the k-th course minus its last k bricks.
+    # The Brick Manager's peel, generalised: the first slice keeps the base course and the first
+    # brick of the next (its `[:(w*2)-1]`), each later slice the k-th course minus its last k
+    # bricks.
     pos_final = pyramid_seperate[: (wall_base_width * 2) - 1]
     for k in range(2, wall_height):
         pos_final += pyramid_seperate[wall_base_width * k : wall_base_width * (k + 1) - k]
