@@ -7,6 +7,7 @@ seed's; `pyramid` and `pyramid_even` are the resting targets built from them.
 """
 
 from .api import build, evaluate, plan, record, settings, structure
+from .choices import ENV_ID, LEROBOT_ENV_ID
 from .config import (
     BrickConfig,
     GripperConfig,
@@ -32,9 +33,6 @@ from .errors import ConfigError, MachineError, PyramidSimError, UnreachableError
 from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
-
-ENV_ID = "pyramid_sim/Build-v0"
-LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"  # learning/lerobot_env.py
 
 
 def _register_env() -> None:

@@ -23,8 +23,13 @@ VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
 # The first seed an evaluation scores (recordings start at 0: the two never overlap).
 EVAL_FIRST_SEED = 100_000
+# The Gymnasium ids pyramid_sim registers when imported: its own keys, and lerobot's.
+ENV_ID = "pyramid_sim/Build-v0"
+LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"
 
 __all__ = [
+    "ENV_ID",
+    "LEROBOT_ENV_ID",
     "DEFAULT_VARIATION",
     "EVAL_FIRST_SEED",
     "ARMS",

@@ -4,7 +4,9 @@
 layout reaches), what it observes and commands (`layout`, `spaces`, `ee_control`, and the
 command limits and spline of `command_limits`), the scripted builder as a policy (`expert`),
 its episodes kept at a dataset's rate (`episode`) and recorded as LeRobot datasets (`record`,
-in the v3.0 layout of `lerobot_format` and `lerobot_meta`).
+in the v3.0 layout of `lerobot_format` and `lerobot_meta`, filmed apart and landed in order
+by `staging`), scored (`evaluate`, `policies`, `scores`) and offered to lerobot
+(`lerobot_env`, `lerobot_policy`).
 
 Importing the package imports none of its modules (the environment needs MuJoCo); `__all__`
 names them.
@@ -26,7 +28,6 @@ __all__ = [
     "outcome",
     "policies",
     "randomize",
-    "ray_staging",
     "record",
     "scores",
     "spaces",

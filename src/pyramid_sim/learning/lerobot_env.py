@@ -12,7 +12,7 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
-from .. import LEROBOT_ENV_ID
+from ..choices import LEROBOT_ENV_ID
 from .env import BuildEnv
 from .episode import task_text
 

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ConfigError
+from ..errors import ConfigError, MachineError
 from .episode import task_text
 from .lerobot_env import lerobot_keys
 
@@ -31,8 +31,6 @@ class LerobotPolicy:
             from lerobot.policies import make_pre_post_processors
             from lerobot.policies.factory import get_policy_class
         except ImportError:
-            from .policies import lerobot_missing
-
             raise lerobot_missing() from None
         config = PreTrainedConfig.from_pretrained(str(folder))
         config.device = "cpu"
@@ -61,3 +59,11 @@ class LerobotPolicy:
         with torch.inference_mode():
             action = self.post(self.policy.select_action(self.pre(tensors)))
         return np.asarray(action.to("cpu").numpy()[0], dtype=np.float32)
+
+
+def lerobot_missing() -> MachineError:
+    """The error for a checkpoint where lerobot cannot be imported."""
+    return MachineError(
+        "policy: a lerobot checkpoint needs lerobot, which is not installed here (it brings "
+        "torch: install it in a venv of its own with pyramid_sim, see docs/evaluation.md)"
+    )

@@ -11,7 +11,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from ..errors import ConfigError, MachineError
+from ..errors import ConfigError
 from .expert import ExpertPolicy
 
 NAMED = ("expert", "zero", "random")
@@ -104,12 +104,4 @@ def make_policy(spec: str, env: Any) -> Policy:
     raise ConfigError(
         f"policy: {spec!r} returned {type(made).__name__}; accepted an object with act(), or a "
         "function of the observation"
-    )
-
-
-def lerobot_missing() -> MachineError:
-    """The error for a checkpoint where lerobot cannot be imported."""
-    return MachineError(
-        "policy: a lerobot checkpoint needs lerobot, which is not installed here (it brings "
-        "torch: install it in a venv of its own with pyramid_sim, see docs/evaluation.md)"
     )
