@@ -13,126 +13,30 @@ import json
 import shutil
 from bisect import bisect_left
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from ..config import MotionConfig
 from ..errors import ConfigError
-from ..jobs.backends import check_backend
 from ..output.files import write_atomic
 from ..output.video import signals_held
 from ..version import __version__
 from . import lerobot_format as fmt
 from . import lerobot_meta as meta
 from .env import BuildEnv
-from .episode import PRIMITIVES, Frame, expert_episode, task_text
-from .layout import BRICK_FIELDS, camera_names, check_cameras, check_image_size, control_steps
-from .staging import STAGING, land, staged, staging_folder
-from .variation import DEFAULT_LEVEL, check_differ, check_level
+from .episode import PRIMITIVES, task_text
+from .filming import FilmAway, features, film_staged, make_env
+from .layout import camera_names, check_cameras
+from .record_config import RecordConfig, Recorded
+from .staging import STAGING, land, staged
+from .variation import check_differ
+
+__all__ = ["RecordConfig", "Recorded", "record"]
 
 RECORDS = "meta/pyramid_sim"  # pyramid_sim's own files, where lerobot does not look
 DATASET_DOC = f"{RECORDS}/dataset.json"
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
 RUN_ONLY = ("episodes", "workers", "backend", "ray_address")
-
-
-@dataclass(frozen=True)
-class RecordConfig:
-    """What a recording is: the build (structure, size and settings, as `build` takes them),
-    how many episodes from which seed, and how they are filmed."""
-
-    structure: str = "pyramid-even"
-    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
-    episodes: int = 1
-    first_seed: int = 0
-    fps: int = 25
-    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
-    image_size: tuple[int, int] = (224, 224)
-    variation: str = DEFAULT_LEVEL  # how episodes differ (learning/variation.py)
-    randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
-    limit_commands: bool = True  # the environment's: commands within the joints' limits
-    workers: int = 1  # episodes filmed at once, each in a process of its own
-    backend: str = "process"  # or ray: the episodes as Ray tasks
-    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
-
-    def __post_init__(self) -> None:
-        if not 1 <= self.episodes <= 100_000:
-            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
-        control_steps(self.fps, MotionConfig().control_dt)
-        check_image_size(self.image_size)
-        check_level(self.variation)
-        if not 1 <= self.workers <= 64:
-            raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
-        check_backend(self.backend, self.ray_address)
-        if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
-            raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
-
-
-@dataclass(frozen=True)
-class Recorded:
-    """What a recording left: the dataset's folder, its episodes and frames, and how many
-    episodes this run added."""
-
-    root: Path
-    episodes: int
-    frames: int
-    added: int
-    failed: tuple[int, ...]  # episodes whose build did not succeed (they are kept)
-
-
-def make_env(config: RecordConfig) -> BuildEnv:
-    """The environment a recording's episodes run in, stepping at its frame rate."""
-    return BuildEnv(
-        config.structure,
-        variation=config.variation,
-        fps=config.fps,
-        limit_commands=config.limit_commands,
-        image_size=config.image_size,
-        randomize=config.randomize,
-        **config.options,
-    )
-
-
-def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
-    """The dataset's per-frame features, from the environment's layout."""
-    names = env.layout.names
-    height, width = config.image_size
-    bricks = tuple(
-        f"brick{slot}.{field}" for slot in range(env.layout.bricks) for field in BRICK_FIELDS
-    )
-    found = {
-        "observation.state": fmt.Feature("float32", (len(names),), names),
-        "observation.environment_state": fmt.Feature("float32", (len(bricks),), bricks),
-        "action": fmt.Feature("float32", (len(names),), names),
-    }
-    for camera in config.cameras:
-        found[f"observation.images.{camera}"] = fmt.Feature("video", (height, width, 3))
-    found["next.reward"] = fmt.Feature("float32", (1,))
-    found["next.done"] = fmt.Feature("bool", (1,))
-    found["next.success"] = fmt.Feature("bool", (1,))
-    for arm in ("left", "right"):
-        found[f"primitive.{arm}"] = fmt.Feature("int64", (1,))  # an index into PRIMITIVES
-        found[f"brick.{arm}"] = fmt.Feature("int64", (1,))  # build order, -1 for none
-    return found
-
-
-def _frame_values(frame: Frame, cameras: tuple[str, ...]) -> dict[str, Any]:
-    values: dict[str, Any] = {
-        "observation.state": frame.state,
-        "observation.environment_state": frame.environment,
-        "action": frame.action,
-        "next.reward": frame.reward,
-        "next.done": frame.done,
-        "next.success": frame.success,
-        "primitive.left": frame.primitive[0],
-        "primitive.right": frame.primitive[1],
-        "brick.left": frame.brick[0],
-        "brick.right": frame.brick[1],
-    }
-    for camera in cameras:
-        values[f"observation.images.{camera}"] = frame.images[camera]
-    return values
 
 
 def _records(root: Path) -> dict[int, dict[str, Any]]:
@@ -257,39 +161,6 @@ class _FramesBefore:
         self.total += length
 
 
-def film_staged(
-    env: BuildEnv,
-    config: RecordConfig,
-    episode: int,
-    out: Path,
-    on_frame: Callable[[int, int], Any] | None = None,
-) -> dict[str, Any]:
-    """Film one episode into its staging folder under `out`: how it ended, its draw and its
-    row (frames indexed from 0)."""
-    root = staging_folder(out, episode)
-    shutil.rmtree(root, ignore_errors=True)
-    files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
-    end, row = film_episode(env, files, config, on_frame)
-    files.commit()  # into the staging folder: the dataset sees nothing yet
-    return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
-
-
-_WORKER_ENV: dict[str, BuildEnv] = {}
-
-
-@dataclass(frozen=True)
-class FilmAway:
-    """An episode filmed in a worker process or a Ray task, its environment made once per
-    process (picklable: the stager hands it to the job runner)."""
-
-    config: RecordConfig
-
-    def __call__(self, episode: int, out: Path) -> dict[str, Any]:
-        if "env" not in _WORKER_ENV:
-            _WORKER_ENV["env"] = make_env(self.config)
-        return film_staged(_WORKER_ENV["env"], self.config, episode, out)
-
-
 def _settings(config: RecordConfig) -> dict[str, Any]:
     """The recording's settings as its episode records keep them (JSON's types)."""
     doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
@@ -336,31 +207,6 @@ def _check_same_recording(
 def _short(value: Any) -> str:
     text = json.dumps(value)
     return text if len(text) <= 60 else text[:57] + "..."
-
-
-def film_episode(
-    env: BuildEnv,
-    files: fmt.EpisodeFiles,
-    config: RecordConfig,
-    on_frame: Callable[[int, int], Any] | None,
-) -> tuple[Any, dict[str, Any]]:
-    """Roll the expert out into `files`; how it ended and its metadata row. A run stopped
-    midway leaves none of the episode's files."""
-    frames = 0
-
-    def keep(frame: Frame) -> None:
-        nonlocal frames
-        files.add(_frame_values(frame, config.cameras))
-        frames += 1
-        if on_frame is not None:
-            on_frame(files.episode, frames)
-
-    try:
-        end = expert_episode(env, config.first_seed + files.episode, config.cameras, keep)
-        return end, files.close()
-    except BaseException:
-        files.abort()
-        raise
 
 
 def _write_text(path: Path, text: str) -> None:

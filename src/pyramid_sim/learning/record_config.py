@@ -1,0 +1,57 @@
+"""What a recording is (`RecordConfig`, checked as it is made) and what it left (`Recorded`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..config import MotionConfig
+from ..errors import ConfigError
+from ..jobs.backends import check_backend
+from .layout import check_image_size, control_steps
+from .variation import DEFAULT_LEVEL, check_level
+
+
+@dataclass(frozen=True)
+class RecordConfig:
+    """What a recording is: the build (structure, size and settings, as `build` takes them),
+    how many episodes from which seed, and how they are filmed."""
+
+    structure: str = "pyramid-even"
+    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
+    episodes: int = 1
+    first_seed: int = 0
+    fps: int = 25
+    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
+    image_size: tuple[int, int] = (224, 224)
+    variation: str = DEFAULT_LEVEL  # how episodes differ (learning/variation.py)
+    randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
+    limit_commands: bool = True  # the environment's: commands within the joints' limits
+    workers: int = 1  # episodes filmed at once, each in a process of its own
+    backend: str = "process"  # or ray: the episodes as Ray tasks
+    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
+
+    def __post_init__(self) -> None:
+        if not 1 <= self.episodes <= 100_000:
+            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
+        control_steps(self.fps, MotionConfig().control_dt)
+        check_image_size(self.image_size)
+        check_level(self.variation)
+        if not 1 <= self.workers <= 64:
+            raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
+        check_backend(self.backend, self.ray_address)
+        if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
+            raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
+
+
+@dataclass(frozen=True)
+class Recorded:
+    """What a recording left: the dataset's folder, its episodes and frames, and how many
+    episodes this run added."""
+
+    root: Path
+    episodes: int
+    frames: int
+    added: int
+    failed: tuple[int, ...]  # episodes whose build did not succeed (they are kept)
