@@ -17,7 +17,7 @@ How: the converter's tools are not project dependencies, so install them first:
     pip install trimesh pycollada fast-simplification
     python3 scripts/convert_baxter_meshes.py [--out DIR]
 
-Files are written atomically (temporary file in the same folder, then ``os.replace``), so
+Files are written atomically (pyramid_sim.output.files, the package's one atomic writer), so
 re-running it over an existing tree is safe. Exit status: 0 on success, 1 if a mesh the
 URDF references is missing from the package, 2 if a converter tool is not installed.
 """
@@ -27,9 +27,7 @@ from __future__ import annotations
 import argparse
 import importlib.metadata
 import math
-import os
 import sys
-import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -116,17 +114,10 @@ def decimate(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
 
 
 def write_atomic(path: Path, data: bytes) -> None:
-    """Write bytes to path via a temporary file in the same folder and os.replace."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.chmod(tmp, 0o644)  # mkstemp makes it owner-only
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    """Write bytes whole or not at all, through pyramid_sim's one atomic writer."""
+    from pyramid_sim.output.files import write_atomic as write_whole
+
+    write_whole(path, lambda tmp: tmp.write_bytes(data))
 
 
 def convert(description: Path, out: Path) -> int:

@@ -17,7 +17,7 @@ How: the converter's tools are not project dependencies, so install them first:
     pip install trimesh pycollada fast-simplification
     python3 scripts/convert_panda_meshes.py [--out DIR]
 
-Files are written atomically (a temporary file in the same folder, then ``os.replace``).
+Files are written atomically (pyramid_sim.output.files, the package's one atomic writer).
 Exit status: 0 on success, 1 if a mesh is missing from the package, 2 if a tool is missing.
 """
 
@@ -26,10 +26,8 @@ from __future__ import annotations
 import argparse
 import importlib.metadata
 import json
-import os
 import shutil
 import sys
-import tempfile
 from pathlib import Path
 
 TARGET_FRACTION = 0.25  # keep this share of each colour's faces
@@ -90,12 +88,10 @@ def decimated(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
 
 
 def write_atomic(path: Path, data: bytes) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    with os.fdopen(fd, "wb") as f:
-        f.write(data)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, path)
+    """Write bytes whole or not at all, through pyramid_sim's one atomic writer."""
+    from pyramid_sim.output.files import write_atomic as write_whole
+
+    write_whole(path, lambda tmp: tmp.write_bytes(data))
 
 
 def main() -> int:

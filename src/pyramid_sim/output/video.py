@@ -6,7 +6,6 @@ Files are written under a temporary name and renamed when complete.
 
 from __future__ import annotations
 
-import os
 import signal
 import threading
 from collections.abc import Callable, Iterator
@@ -19,7 +18,7 @@ import numpy as np
 
 from ..config import VideoConfig
 from ..errors import MachineError
-from .files import temporary_beside, write_atomic
+from .files import move_into_place, temporary_beside, write_atomic
 from .gl_backend import choose_gl_backend
 from .renderer import HeadlessRenderer
 
@@ -121,7 +120,7 @@ class Recorder:
         """Close the file and move it into place."""
         self.writer.close()
         self.renderer.close()
-        os.replace(self.tmp, self.path)
+        move_into_place(self.tmp, self.path)
 
     def abort(self) -> None:
         """Drop the partial file: an interrupted run leaves nothing under the asked name."""
