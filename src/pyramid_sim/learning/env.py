@@ -24,9 +24,9 @@ import gymnasium
 import mink
 import numpy as np
 
-from ..options import resolve
 from ..choices import ArmChoice
 from ..errors import ConfigError
+from ..options import resolve
 from ..output.judge import judge
 from ..physics.loop import BuildLoop
 from ..physics.stops import no_motion_reason
