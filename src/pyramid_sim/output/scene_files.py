@@ -1,6 +1,8 @@
-"""A scene's MJCF made portable: the files it references (the robots' meshes, from this
-package and from example-robot-data) are copied into a folder beside the XML and named in it
-by relative paths, so the two can be moved or copied anywhere and still open. Pure: no MuJoCo.
+"""A build's scene written to a file (`write_scene`): MuJoCo's binary model, or its MJCF made
+portable: the files it references (the robots' meshes, from this package and from
+example-robot-data) are copied into a folder beside the XML and named in it by relative paths,
+so the two can be moved or copied anywhere and still open. Importing it needs no MuJoCo;
+`write_scene` brings the physics in when it is called.
 """
 
 from __future__ import annotations
@@ -8,9 +10,15 @@ from __future__ import annotations
 import shutil
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import ConfigError
-from .files import atomic_dir, atomic_path
+from .files import atomic_dir, atomic_path, write_atomic
+
+if TYPE_CHECKING:
+    import mujoco
+
+    from ..config import SimConfig
 
 # What `scene` copies: an earlier folder holding only such files is its own, and is replaced.
 ASSET_SUFFIXES = (".stl", ".obj", ".msh", ".ply", ".png")
@@ -87,3 +95,20 @@ def write_portable_xml(path: Path, xml: str) -> Path:
             for source, name in copies.items():
                 shutil.copyfile(source, tmp_folder / name)
     return folder
+
+
+def write_scene(config: SimConfig, n_bricks: int, path: Path) -> tuple[mujoco.MjModel, list[Path]]:
+    """The compiled scene of a build, written atomically: `.mjb` (MuJoCo's binary model,
+    self-contained) or `.xml` (MJCF) with the meshes it uses copied into `x_meshes/` beside it
+    and named relatively, so the two open anywhere without this package. Returns the model and
+    what was written."""
+    import mujoco
+
+    from ..physics.scene import build_spec
+
+    spec = build_spec(config, n_bricks)
+    model = spec.compile()
+    if path.suffix.lower() == ".mjb":
+        write_atomic(path, lambda tmp: mujoco.mj_saveModel(model, str(tmp), None))
+        return model, [path]
+    return model, [path, write_portable_xml(path, spec.to_xml())]

@@ -8,7 +8,6 @@ bricks' friction, as MuJoCo gives a contact the larger of its two geoms'.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -142,22 +141,6 @@ def build_scene(config: SimConfig, n_bricks: int) -> Scene:
     """Compile the full scene with a magazine of `n_bricks` bricks."""
     model = build_spec(config, n_bricks).compile()
     return Scene(model=model, n_bricks=n_bricks)
-
-
-def write_scene(config: SimConfig, n_bricks: int, path: Path) -> tuple[mujoco.MjModel, list[Path]]:
-    """The compiled scene of a build, written atomically: `.mjb` (MuJoCo's binary model,
-    self-contained) or `.xml` (MJCF) with the meshes it uses copied into `x_meshes/` beside it
-    and named relatively, so the two open anywhere without this package. Returns the model and
-    what was written."""
-    from ..output.files import write_atomic
-    from ..output.scene_files import write_portable_xml
-
-    spec = build_spec(config, n_bricks)
-    model = spec.compile()
-    if path.suffix.lower() == ".mjb":
-        write_atomic(path, lambda tmp: mujoco.mj_saveModel(model, str(tmp), None))
-        return model, [path]
-    return model, [path, write_portable_xml(path, spec.to_xml())]
 
 
 def _add_contact_sensors(spec: mujoco.MjSpec, robot: RobotDescription) -> None:

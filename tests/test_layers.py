@@ -1,0 +1,171 @@
+"""The package's dependencies run one way, read from the source (every import statement,
+those inside functions included; imports for the type checker alone do not run and are left
+out): the layers below, top to bottom, each importing only those beneath it (names side by
+side are independent of each other), and no circle anywhere."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = "pyramid_sim"
+LAYERS = (
+    ("cli", "perf"),  # entry points and benchmark figures: public names, and any layer
+    ("api",),  # the Python API (and the package's own namespace)
+    ("learning", "sweep"),  # what users run on top of builds
+    ("jobs",),  # a build judged, and the runner sweeps and recordings share
+    ("output",),  # results, films, scene files, every file written
+    ("physics", "options"),  # the MuJoCo build loop; user options resolved to settings
+    ("core",),  # pure geometry and scheduling (no MuJoCo)
+    ("config",),
+    ("params", "robots"),
+    ("choices", "errors", "version", "resources"),
+)
+ENTRY_POINTS = ("cli", "perf")  # alone may import the package's namespace, as a user would
+
+
+def _modules() -> dict[str, Path]:
+    found = {}
+    for path in (SRC / PACKAGE).rglob("*.py"):
+        parts = list(path.relative_to(SRC).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        found[".".join(parts)] = path
+    return found
+
+
+def _type_checking_only(tree: ast.Module) -> set[int]:
+    """Line numbers inside `if TYPE_CHECKING:` blocks."""
+    lines: set[int] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            for child in node.body:
+                lines.update(range(child.lineno, (child.end_lineno or child.lineno) + 1))
+    return lines
+
+
+def _imports(modules: dict[str, Path]) -> dict[str, set[str]]:
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        tree = ast.parse(path.read_text())
+        skip = _type_checking_only(tree)
+        package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+        targets: set[str] = set()
+        for node in ast.walk(tree):
+            if getattr(node, "lineno", None) in skip:
+                continue
+            if isinstance(node, ast.Import):
+                targets.update(a.name for a in node.names)
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    source = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    source = node.module or ""
+                for alias in node.names:
+                    full = f"{source}.{alias.name}"
+                    targets.add(full if full in modules else source)
+        graph[name] = {t for t in targets if t in modules and t != name}
+    return graph
+
+
+def _room(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "api"  # the package's namespace sits with api
+
+
+def _rank(room: str) -> int:
+    for rank, names in enumerate(LAYERS):
+        if room in names:
+            return rank
+    raise AssertionError(f"{room!r} is in no layer: add it to LAYERS")
+
+
+def _upward(graph: dict[str, set[str]]) -> list[str]:
+    """Imports of a layer above, or of a room beside, the importer's."""
+    found = []
+    for module, targets in sorted(graph.items()):
+        for target in sorted(targets):
+            a, b = _room(module), _room(target)
+            if a != b and _rank(b) <= _rank(a):
+                found.append(f"{module} -> {target}")
+    return found
+
+
+def _circles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Tarjan's strongly connected components of more than one module."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    circles: list[list[str]] = []
+
+    def visit(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        for nxt in sorted(graph[node]):
+            if nxt not in index:
+                visit(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in stack:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                member = stack.pop()
+                component.append(member)
+                if member == node:
+                    break
+            if len(component) > 1:
+                circles.append(sorted(component))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return circles
+
+
+def test_every_import_points_down_the_layers():
+    assert _upward(_imports(_modules())) == []
+
+
+def test_nothing_inside_the_package_imports_its_api_but_the_entry_points():
+    graph = _imports(_modules())
+    users = sorted(
+        m for m, targets in graph.items()
+        if targets & {PACKAGE, f"{PACKAGE}.api"} and _room(m) not in (*ENTRY_POINTS, "api")
+    )  # fmt: skip
+    assert users == []
+
+
+def test_the_import_graph_has_no_circle():
+    assert _circles(_imports(_modules())) == []
+
+
+def test_the_lerobot_format_never_reaches_the_environment():
+    """The dataset's layout is lerobot's, whoever films the episodes."""
+    graph = _imports(_modules())
+    for start in ("learning.lerobot_format", "learning.lerobot_meta", "learning.staging"):
+        seen, todo = set(), [f"{PACKAGE}.{start}"]
+        while todo:
+            for nxt in graph[todo.pop()] - seen:
+                seen.add(nxt)
+                todo.append(nxt)
+        assert not {f"{PACKAGE}.learning.env", f"{PACKAGE}.learning.record"} & seen, start
+
+
+def test_the_checks_find_a_function_level_import_an_upward_one_and_a_circle():
+    graph = _imports(_modules())
+    assert f"{PACKAGE}.physics.reach" in graph[f"{PACKAGE}.api"]  # imported inside build()
+    made_up = {
+        f"{PACKAGE}.core.plan": {f"{PACKAGE}.physics.loop"},  # up a layer
+        f"{PACKAGE}.physics.loop": {f"{PACKAGE}.core.plan"},  # and back: a circle
+        f"{PACKAGE}.sweep.run": {f"{PACKAGE}.learning.env"},  # beside
+    }
+    assert _upward(made_up) == [
+        f"{PACKAGE}.core.plan -> {PACKAGE}.physics.loop",
+        f"{PACKAGE}.sweep.run -> {PACKAGE}.learning.env",
+    ]
+    assert _circles({**made_up, f"{PACKAGE}.learning.env": set()}) == [
+        [f"{PACKAGE}.core.plan", f"{PACKAGE}.physics.loop"]
+    ]
