@@ -83,7 +83,7 @@ def draw(plan, top, side, title: str) -> None:
 def main() -> int:
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "docs/walls.png")
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
-    draw(pyramid_sim.plan("wall"), axes[0][0], axes[1][0], "wall (the seed's text)")
+    draw(pyramid_sim.plan("wall"), axes[0][0], axes[1][0], "wall (the Brick Manager's text)")
     draw(pyramid_sim.plan("corner-wall"), axes[0][1], axes[1][1], "corner-wall (the upstream loop)")
     fig.savefig(out, dpi=110)
     print(f"-> {out}")

@@ -1,4 +1,4 @@
-"""Physics: two Pandas build the seed's pyramids; every final brick pose is checked."""
+"""Physics: two Pandas build DE NIRO's pyramids; every final brick pose is checked."""
 
 import math
 import re
@@ -187,7 +187,7 @@ def _brick_manager_spec(name: str) -> StructureSpec:
     ],
 )
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):
-    """Every structure at its default size (the seed's five goals for the list), by both arms
+    """Every structure at its default size (the Brick Manager's five goals for the list), by both arms
     and by one alone; every final pose within the pyramid tests' tolerances."""
     from pyramid_sim.jobs.build import run_build
 
@@ -236,7 +236,7 @@ def test_only_the_overlap_schedule_lifts_quickly_and_turns_on_the_way_up(schedul
     target = grasp_yaw(loop.plan.bricks[0].target.pose.yaw, reference)
     lift = steps[grip + 1].speed
     if schedule == "lockstep":
-        assert lifted == pytest.approx(grasped)  # the seed turns on the way out
+        assert lifted == pytest.approx(grasped)  # DE NIRO's hand turns on the way out
         assert lift == config.motion.slow_speed
     else:
         assert abs(lifted - target) < abs(grasped - target) - 0.3

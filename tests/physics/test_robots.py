@@ -1,4 +1,4 @@
-"""Each robot preset loads clean, matches its description, and builds; Baxter builds the seed's
+"""Each robot preset loads clean, matches its description, and builds; Baxter builds DE NIRO's
 even pyramid in its own frame."""
 
 import math

@@ -1,7 +1,7 @@
 """How large a structure the arms build wherever the `layout` variation puts it: every pose
 checked by IK at the corners of the layout's region (the structure shifted and turned to each
 extreme with the spawn spot at DE NIRO's, and the spawn spot at each extreme with the
-structure at the seeds' place). A draw inside the region whose pose is still out of reach is
+structure at DE NIRO's place). A draw inside the region whose pose is still out of reach is
 drawn again (learning/variation.py)."""
 
 from __future__ import annotations

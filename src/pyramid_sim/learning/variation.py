@@ -1,7 +1,7 @@
 """How much one episode differs from the next: named levels, the same in the environment,
 `record` and evaluation. Each episode's draw comes from its seed alone.
 
-- `fixed`: the seeds' layout (DE NIRO's spawn spot, the structure where its generator lays it);
+- `fixed`: DE NIRO's layout (its spawn spot, the structure where its generator lays it);
   only the physics' own determinism and any spawn jitter set.
 - `layout`: where the bricks are fed (the spawn spot anywhere in `SPAWN_REGION`, its yaw turned by up
   to `SPAWN_TURN`), where the structure stands and which way it faces (shifted within
@@ -25,8 +25,8 @@ from ..errors import ConfigError
 from .randomize import PARTS
 
 LEVELS, DEFAULT_LEVEL = VARIATIONS, DEFAULT_VARIATION
-STREAM = 0x1A70  # the layout's own random stream beside the seed's others
-SPAWN_REGION = (0.03, 0.04)  # m either side of the seeds' spawn spot, in x and y
+STREAM = 0x1A70  # the layout's own random stream beside the episode seed's others
+SPAWN_REGION = (0.03, 0.04)  # m either side of DE NIRO's spawn spot, in x and y
 # The spawn yaw turned clockwise by up to this: DE NIRO's quarter turn is where the grasp's
 # two yaws tie, and a brick turned the other way is gripped the other way round, out of the
 # right arm's wrist range.

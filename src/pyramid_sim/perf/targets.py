@@ -14,7 +14,7 @@ def structure_label(spec: StructureSpec) -> str:
     return f"{spec.name} {spec.size_text()}"
 
 
-# The 20-brick pyramid the seed's figures are for.
+# The 20-brick pyramid DE NIRO's figures are for.
 DEFAULT_STRUCTURE = structure_label(StructureSpec("pyramid-even", layers=4))
 
 

@@ -100,7 +100,7 @@ def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
         return replace(spec, width=value, bricks=3 * value + 1)
     if spec.name == "wall-pyramid":
         return replace(spec, width=value, layers=min(spec.layers or 1, value))
-    if spec.name == "corner-wall":  # two and a half courses, as the seed's 15 bricks of 6
+    if spec.name == "corner-wall":  # two and a half courses, as the Brick Manager's 15 bricks of 6
         return replace(spec, width=value, bricks=3 * (value + 1) - (value + 1) // 2)
     sizes: dict[str, Any] = {knob: value}
     return replace(spec, **sizes)

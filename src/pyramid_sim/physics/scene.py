@@ -126,7 +126,7 @@ def place_spawn(model: mujoco.MjModel, config: SimConfig) -> None:
 
 def scene_key(config: SimConfig) -> SimConfig:
     """What a compiled scene is made from: the settings less the spawn spot's place (which
-    `place_spawn` moves), the structure's place and the seed (which it does not hold)."""
+    `place_spawn` moves), the structure's place and the random seed (which it does not hold)."""
     layout = replace(
         config.layout,
         spawn_xy=LayoutConfig.spawn_xy,

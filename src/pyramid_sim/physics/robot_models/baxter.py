@@ -1,5 +1,5 @@
 """Baxter's model: the shipped baxter.urdf (assets/robots/baxter/, from example-robot-data) with
-its meshes converted to STL, standing at the world origin (its base frame is the seed's).
+its meshes converted to STL, standing at the world origin (its base frame is DE NIRO's).
 
 What is changed from the URDF, and why:
 - the head is locked (head_pan removed): nothing in a build turns it;
