@@ -37,7 +37,7 @@ class Param:
 
     @property
     def range_text(self) -> str:
-        return f"{'(' if self.low_open else '['}{self.low:g}, {self.high:g}]"
+        return span_text(self.low, self.high, self.low_open)
 
     @property
     def help(self) -> str:
@@ -129,9 +129,51 @@ def check_section(section: str, settings: Any) -> None:
             p.check(getattr(settings, p.field))
 
 
+@dataclass(frozen=True)
+class Bound:
+    """An accepted range held in one place: the check that refuses a value and the help text
+    that states the range both read it, so the two cannot drift apart."""
+
+    name: str  # as a person reads it, in messages
+    low: float
+    high: float
+    low_open: bool = False  # low itself is refused
+
+    @property
+    def text(self) -> str:
+        return span_text(self.low, self.high, self.low_open)
+
+    def check(self, value: Any) -> None:
+        """ConfigError naming the value and this range unless `value` is within it."""
+        check_range(self.name, value, self.low, self.high, low_open=self.low_open)
+
+
+def span_text(low: float, high: float, low_open: bool = False) -> str:
+    """`[low, high]`, or `(low, high]` when low is refused, numbers written compactly."""
+    return f"{'(' if low_open else '['}{low:g}, {high:g}]"
+
+
+def parse_number(text: str) -> float:
+    """`text` as a float, written as a person writes numbers: ValueError for what Python's
+    float() reads but nobody means, digit separators (`0_5` is 5 to float) and non-ASCII
+    digits. Range, NaN and inf are the settings' checks."""
+    return float(_plain(text))
+
+
+def parse_whole(text: str) -> int:
+    """`text` as an int, refusing what `parse_number` refuses."""
+    return int(_plain(text))
+
+
+def _plain(text: str) -> str:
+    if "_" in text or not text.isascii():
+        raise ValueError(f"{text!r} is not a plain number")
+    return text
+
+
 def check_range(name: str, value: Any, low: float, high: float, *, low_open: bool = False) -> None:
     """Raise ConfigError unless low <= value <= high (low < value when low_open)."""
-    span = f"{'(' if low_open else '['}{low:g}, {high:g}]"
+    span = span_text(low, high, low_open)
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ConfigError(f"{name}: {value!r} is not a number; accepted {span}")
     ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ..config import BrickConfig
 from ..errors import ConfigError
+from ..params import parse_number, span_text
 from .poses import Pose
 from .structures import BrickTarget
 from .support import TOLERANCE, first_fault
@@ -24,6 +25,11 @@ from .support import TOLERANCE, first_fault
 COLUMNS = ("x", "y", "z", "yaw")
 REQUIRED = ("x", "y", "z")
 MAX_GOALS = 200
+MAX_BYTES = 1_000_000  # far more than MAX_GOALS rows need; a larger file is not a goals list
+# Sane bounds, far beyond any arm's reach (the reach check then names the arms' own limit):
+# a value past them is a typo, and would overflow the arithmetic that follows.
+MAX_COORDINATE = 10.0  # m, either way
+MAX_YAW = 2 * math.pi  # rad, a turn either way
 
 
 def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTarget, ...]:
@@ -32,10 +38,7 @@ def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTar
     the table or between courses, and bricks that overlap, float or would tip, naming the row
     (1 = first goal): a build of them would fail without saying why."""
     name = path.name
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise ConfigError(f"goals: cannot read {str(path)!r} ({err.strerror})") from None
+    text = _read_text(path)
     rows = _json_rows(text, name) if path.suffix.lower() == ".json" else _csv_rows(text, name)
     if not rows:
         raise ConfigError(f"goals: {name} holds no goals; accepted 1 to {MAX_GOALS}")
@@ -50,11 +53,35 @@ def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTar
     return tuple(targets)
 
 
+def _read_text(path: Path) -> str:
+    """The file's text, as UTF-8 (a byte-order mark allowed, as spreadsheets write one);
+    ConfigError for a file that cannot be read, is too large, or is not UTF-8 text."""
+    where = f"goals: {path.name}"
+    try:
+        with path.open("rb") as file:
+            data = file.read(MAX_BYTES + 1)
+    except OSError as err:
+        raise ConfigError(f"goals: cannot read {str(path)!r} ({err.strerror})") from None
+    if len(data) > MAX_BYTES:
+        raise ConfigError(f"{where} is over {MAX_BYTES:,} bytes; accepted 1 to {MAX_GOALS} goals")
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise ConfigError(
+            f"{where} is not UTF-8 text (byte {err.start} is 0x{data[err.start]:02x}); "
+            "accepted JSON or CSV in UTF-8"
+        ) from None
+
+
 def _json_rows(text: str, name: str) -> list[dict]:
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as err:
         raise ConfigError(f"goals: {name} is not JSON ({err.msg}, line {err.lineno})") from None
+    except RecursionError:
+        raise ConfigError(f"goals: {name} is not a goals list (nested too deep)") from None
+    except ValueError:  # an int of more digits than Python converts (4300)
+        raise ConfigError(f"goals: {name} is not a goals list (a number too long)") from None
     rows = doc.get("goals") if isinstance(doc, dict) else doc
     if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
         raise ConfigError(
@@ -70,10 +97,15 @@ def _csv_rows(text: str, name: str) -> list[dict]:
             f"goals: {name} is empty; accepted a header x,y,z,yaw and one row a brick"
         )
     rows = []
-    for row in reader:
-        if None in row:
-            raise ConfigError(f"goals: {name} row {reader.line_num - 1}: more values than columns")
-        rows.append({k.strip(): v for k, v in row.items()})
+    try:
+        for row in reader:
+            if None in row:
+                raise ConfigError(
+                    f"goals: {name} row {reader.line_num - 1}: more values than columns"
+                )
+            rows.append({k.strip(): v for k, v in row.items()})
+    except csv.Error as err:  # a field over csv's size limit, a NUL byte
+        raise ConfigError(f"goals: {name} line {reader.line_num}: not CSV ({err})") from None
     return rows
 
 
@@ -85,19 +117,7 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
     missing = [k for k in REQUIRED if k not in row or row[k] in ("", None)]
     if missing:
         raise ConfigError(f"{where}: no {missing[0]}; accepted columns {', '.join(COLUMNS)}")
-    values = {}
-    for key in COLUMNS:
-        raw = row.get(key, 0.0)
-        raw = 0.0 if raw in ("", None) else raw
-        try:
-            if isinstance(raw, bool):
-                raise ValueError
-            value = float(raw)
-        except (TypeError, ValueError):
-            raise ConfigError(f"{where}: {key} {raw!r} is not a number") from None
-        if not math.isfinite(value):
-            raise ConfigError(f"{where}: {key} {raw!r} is not a finite number")
-        values[key] = value
+    values = {key: _value(row, key, where) for key in COLUMNS}
     layer = round((values["z"] - table_z) / brick.height)
     if layer < 0 or abs(values["z"] - table_z - layer * brick.height) > TOLERANCE:
         raise ConfigError(
@@ -106,3 +126,30 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
         )
     pose = Pose(values["x"], values["y"], table_z + layer * brick.height, values["yaw"])
     return BrickTarget(pose, layer)
+
+
+def _value(row: dict, key: str, where: str) -> float:
+    """The row's `key` as a float within its sane bound (0 if left out); ConfigError naming
+    the row, the column and the accepted range otherwise."""
+    raw = row.get(key, 0.0)
+    raw = 0.0 if raw in ("", None) else raw
+    try:
+        if isinstance(raw, bool):
+            raise ValueError
+        value = parse_number(raw.strip()) if isinstance(raw, str) else float(raw)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{where}: {key} {_quoted(raw)} is not a number") from None
+    except OverflowError:  # an int past any float
+        value = math.inf
+    limit, unit = (MAX_YAW, "rad") if key == "yaw" else (MAX_COORDINATE, "m")
+    if not math.isfinite(value) or abs(value) > limit:
+        raise ConfigError(
+            f"{where}: {key} {value:g} is out of range; accepted {span_text(-limit, limit)} {unit}"
+        )
+    return value
+
+
+def _quoted(raw: object) -> str:
+    """A value that is not a number as the message shows it: quoted, and cut short."""
+    text = repr(raw)
+    return text if len(text) <= 40 else f"{text[:37]}..."
