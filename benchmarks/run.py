@@ -11,9 +11,8 @@ Targets are reported, never asserted: these machines are too noisy for timed tes
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-from pyramid_sim.cli.args import EXIT_USAGE, Parser, one_of, whole
+from pyramid_sim.cli.args import EXIT_USAGE, Parser, one_of, output_path, whole
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.output.files import check_writable_dir, write_json_atomic
 from pyramid_sim.output.gl_backend import choose_gl_backend
@@ -22,7 +21,12 @@ from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
 
 def main(argv: list[str] | None = None) -> int:
     parser = Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
-    parser.add_argument("--json", type=Path, metavar="PATH", help="also write the figures here")
+    parser.add_argument(
+        "--json",
+        type=output_path("json path", folder=False),
+        metavar="PATH",
+        help="also write the figures here",
+    )
     parser.add_argument(
         "--layers",
         type=whole("layers", "1 to 5"),

@@ -12,12 +12,20 @@ from functools import cached_property
 
 from .choices import CAMERAS, SCHEDULES, Camera, RobotName, Schedule
 from .errors import ConfigError
-from .params import check_range, check_section, default
+from .params import Bound, check_range, check_section, default
 from .robots import DEFAULT_ROBOT, RobotDescription, robot
 
 Vec3 = tuple[float, float, float]
 DROP_DISTANCE = 0.03  # m: a held brick this far from where it was gripped has left the hand
 DROP_MM = DROP_DISTANCE * 1000.0  # so a slip is measured only short of it
+
+# Ranges the command line's help states too: each is held here and read by both.
+SPAWN_JITTER_MM = Bound("spawn jitter (mm)", 0.0, 10.0)
+VIDEO_FPS = Bound("fps", 1, 120)
+VIDEO_WIDTH = Bound("video width", 16, 1920)
+VIDEO_HEIGHT = Bound("video height", 16, 1080)
+SPEEDUP = Bound("speedup", 0.1, 100.0)
+ANTIALIAS_SAMPLES = (0, 2, 4, 8)
 
 
 def check_count(name: str, value: int, low: int, high: int) -> None:
@@ -90,7 +98,7 @@ class LayoutConfig:
         check_range("structure shift x", self.structure_shift[0], -0.2, 0.2)
         check_range("structure shift y", self.structure_shift[1], -0.2, 0.2)
         check_range("structure turn", self.structure_turn, -math.pi / 2, math.pi / 2)
-        check_range("spawn jitter (mm)", self.spawn_jitter_mm, 0.0, 10.0)
+        SPAWN_JITTER_MM.check(self.spawn_jitter_mm)
         check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
         check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)
         check_range("spawn y", self.spawn_xy[1], -0.4, 0.4)
@@ -209,16 +217,16 @@ class VideoConfig:
     speedup: float = 1.0  # simulated seconds shown per second of video
 
     def __post_init__(self) -> None:
-        check_range("fps", self.fps, 1, 120)
-        check_range("video width", self.width, 16, 1920)
-        check_range("video height", self.height, 16, 1080)
-        check_range("speedup", self.speedup, 0.1, 100.0)
-        if self.antialias not in (0, 2, 4, 8):
-            raise ConfigError(f"antialias: {self.antialias} samples; accepted 0, 2, 4 or 8")
+        VIDEO_FPS.check(self.fps)
+        VIDEO_WIDTH.check(self.width)
+        VIDEO_HEIGHT.check(self.height)
+        SPEEDUP.check(self.speedup)
+        if self.antialias not in ANTIALIAS_SAMPLES:
+            raise ConfigError(f"antialias: {self.antialias} samples; accepted {antialias_text()}")
         if self.width % 2 or self.height % 2:
             raise ConfigError(
                 f"video size: {self.width}x{self.height} must be even in both (H.264); "
-                "accepted width 16 to 1920, height 16 to 1080"
+                f"accepted width {VIDEO_WIDTH.text}, height {VIDEO_HEIGHT.text}"
             )
         if self.camera not in CAMERAS:
             raise ConfigError(f"camera: unknown {self.camera!r}; accepted {', '.join(CAMERAS)}")
@@ -229,6 +237,12 @@ class VideoConfig:
         return self.speedup / self.fps
 
 
+def antialias_text() -> str:
+    """The accepted sample counts as a person reads them: `0, 2, 4 or 8`."""
+    *rest, last = map(str, ANTIALIAS_SAMPLES)
+    return f"{', '.join(rest)} or {last}"
+
+
 def check_film(video: VideoConfig, config: SimConfig) -> None:
     """ConfigError unless the video's frames are at least a physics step apart: the loop
     films at most one frame a step, so a slower motion could not be honoured."""
@@ -237,6 +251,7 @@ def check_film(video: VideoConfig, config: SimConfig) -> None:
         raise ConfigError(
             f"speedup: {video.speedup:g} at {video.fps} fps asks a frame every "
             f"{video.frame_dt * 1000:.2g} ms of simulated time, less than the "
-            f"{config.timestep * 1000:g} ms physics step; accepted {slowest:.3g} to 100 at "
+            f"{config.timestep * 1000:g} ms physics step; accepted {slowest:.3g} to "
+            f"{SPEEDUP.high:g} at "
             f"{video.fps} fps"
         )

@@ -65,7 +65,7 @@ def make_parser() -> a.Parser:
     a.add_physics_args(scene)
     scene.add_argument(
         "--out",
-        type=Path,
+        type=a.output_path("out", folder=False),
         required=True,
         metavar="FILE",
         help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES
-from ..config import SimConfig
+from ..config import SPAWN_JITTER_MM, SimConfig
 from ..core.structures import (
     MAX_BRICKS,
     MAX_COURSE,
@@ -21,8 +21,9 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
-from ..params import PARAMS
+from ..params import PARAMS, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT, PRESETS
+from .paths import path_problem
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -49,7 +50,7 @@ def number(name: str) -> Callable[[str], float]:
 
     def parse(text: str) -> float:
         try:
-            return float(text)
+            return parse_number(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a number") from None
 
@@ -61,7 +62,7 @@ def whole(name: str, accepted: str = "") -> Callable[[str], int]:
 
     def parse(text: str) -> int:
         try:
-            return int(text)
+            return parse_whole(text)
         except ValueError:
             hint = f"; accepted {accepted}" if accepted else ""
             raise argparse.ArgumentTypeError(
@@ -78,6 +79,22 @@ def one_of(name: str, options: Sequence[str]) -> Callable[[str], str]:
                 f"{name}: unknown {text!r}; accepted {', '.join(options)}"
             )
         return text
+
+    return parse
+
+
+def output_path(what: str, *, folder: bool) -> Callable[[str], Path]:
+    """Text to the path of an output (a folder, or a file when not `folder`), refusing at once
+    what would otherwise fail midway or write somewhere unmeant: an empty path (it would be
+    the working folder), a name longer than its file system takes, and a file's path that
+    names a folder. Every --out, --video and --snapshot is read through this."""
+    kind = "folder" if folder else "file"
+
+    def parse(text: str) -> Path:
+        problem = path_problem(text, folder)
+        if problem:
+            raise argparse.ArgumentTypeError(f"{what}: {problem}; accepted a {kind}'s path")
+        return Path(text)
 
     return parse
 
@@ -164,7 +181,7 @@ def add_physics_args(
         default=0.0,
         metavar="MM",
         help="each spawned brick lands up to MM off the spot in x and y; accepted "
-        "[0, 10] (default 0)",
+        f"{SPAWN_JITTER_MM.text} (default 0)",
     )
     p.add_argument("--seed", type=whole("seed"), default=seed_default, help=seed_help)
 
@@ -215,7 +232,7 @@ def add_out_args(p: argparse.ArgumentParser, default: Path) -> None:
     """--out and --quiet, as build and sweep share them."""
     p.add_argument(
         "--out",
-        type=Path,
+        type=output_path("out", folder=True),
         default=default,
         metavar="DIR",
         help=f"output folder, held by this run while it runs (default {default})",
@@ -245,6 +262,15 @@ def config_from_args(args: argparse.Namespace) -> SimConfig:
     )
 
 
+def size_options(args: argparse.Namespace) -> dict[str, int]:
+    """The structure's size options given (by their keywords: `--wall-width` is `width`)."""
+    given = {
+        option: getattr(args, flag[2:].replace("-", "_"))
+        for option, (flag, _) in SIZE_FLAGS.items()
+    }
+    return {option: value for option, value in given.items() if value is not None}
+
+
 def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec:
     """The structure and its size; ConfigError for a bad size, option or goals file."""
     goals = None
@@ -253,10 +279,9 @@ def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec
 
         table_z = config.layout.table_top_z + config.brick.height / 2
         goals = load_goals(args.goals, config.brick, table_z)
-    sizes = {
-        option: getattr(args, flag[2:].replace("-", "_"))
-        for option, (flag, _) in SIZE_FLAGS.items()
-    }
     return StructureSpec(
-        args.structure, **sizes, goals=goals, goals_source=args.goals.name if args.goals else ""
+        args.structure,
+        **size_options(args),
+        goals=goals,
+        goals_source=args.goals.name if args.goals else "",
     )

@@ -9,6 +9,7 @@ from typing import Any
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
+from ..params import parse_whole
 from .args import (
     add_backend_args,
     add_episode_args,
@@ -26,7 +27,7 @@ CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
 def image_size(text: str) -> tuple[int, int]:
     """`H` (square) or `HxW`, in pixels."""
     try:
-        parts = [int(v) for v in text.lower().split("x")]
+        parts = [parse_whole(v) for v in text.lower().split("x")]
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"image size: {text!r} is not a size; accepted N or HxW, even, 16 to 1080 x 1920"

@@ -7,7 +7,7 @@ import argparse
 import os
 from pathlib import Path
 
-from ..config import SimConfig
+from ..config import SPAWN_JITTER_MM, SimConfig
 from ..params import PARAMS
 from ..sweep.grid import SweepConfig, parse_axis
 from .args import (
@@ -50,7 +50,8 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
         type=number("spawn jitter"),
         default=SWEEP_JITTER_MM,
         metavar="MM",
-        help=f"spawned bricks land up to MM off the spot, [0, 10] (default {SWEEP_JITTER_MM:g})",
+        help=f"spawned bricks land up to MM off the spot, {SPAWN_JITTER_MM.text} "
+        f"(default {SWEEP_JITTER_MM:g})",
     )
     p.add_argument(
         "--workers",

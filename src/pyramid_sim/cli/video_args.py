@@ -4,12 +4,18 @@ VideoConfig; a setting given without the output it sets is refused."""
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from ..choices import CAMERAS
-from ..config import VideoConfig
+from ..config import (
+    SPEEDUP,
+    VIDEO_FPS,
+    VIDEO_HEIGHT,
+    VIDEO_WIDTH,
+    VideoConfig,
+    antialias_text,
+)
 from ..errors import ConfigError
-from .args import number, one_of, whole
+from .args import number, one_of, output_path, whole
 
 # dest -> (flag, what it sets: the film alone or the film and the still, VideoConfig field)
 VIDEO_OPTIONS = {
@@ -44,10 +50,16 @@ def add_video_args(p: argparse.ArgumentParser) -> None:
     """The film's and the still's flags. Their defaults are None here (the help text names the
     real ones) so a setting given without --video or --snapshot can be told and refused."""
     p.add_argument(
-        "--video", type=Path, metavar="PATH.mp4", help="render the build to this MP4 (H.264)"
+        "--video",
+        type=output_path("mp4 path", folder=False),
+        metavar="PATH.mp4",
+        help="render the build to this MP4 (H.264)",
     )
     p.add_argument(
-        "--snapshot", type=Path, metavar="PATH.png", help="write a PNG of the final structure"
+        "--snapshot",
+        type=output_path("png path", folder=False),
+        metavar="PATH.png",
+        help="write a PNG of the final structure",
     )
     add_film_settings(p)
 
@@ -57,34 +69,23 @@ def add_film_settings(p: argparse.ArgumentParser) -> None:
     rate and speed."""
     d = VideoConfig()
     p.add_argument(
-        "--fps", type=whole("fps"), help=f"video frames a second, 1 to 120 (default {d.fps})"
+        "--fps",
+        type=whole("fps"),
+        help=f"video frames a second, {VIDEO_FPS.text} (default {d.fps})",
     )
     p.add_argument(
         "--video-width",
         type=whole("video width"),
         metavar="PIXELS",
-        help=f"of the video and the snapshot, even, 16 to 1920 (default {d.width})",
+        help=f"of the video and the snapshot, even, {VIDEO_WIDTH.text} (default {d.width})",
     )
     p.add_argument(
         "--video-height",
         type=whole("video height"),
         metavar="PIXELS",
-        help=f"of the video and the snapshot, even, 16 to 1080 (default {d.height})",
+        help=f"of the video and the snapshot, even, {VIDEO_HEIGHT.text} (default {d.height})",
     )
-    p.add_argument(
-        "--width",
-        nargs="?",
-        help=argparse.SUPPRESS,
-        action=renamed(
-            "--video-width", "the video's width in pixels; a wall's course width is --wall-width"
-        ),
-    )
-    p.add_argument(
-        "--height",
-        nargs="?",
-        help=argparse.SUPPRESS,
-        action=renamed("--video-height", "the video's height in pixels"),
-    )
+    add_renamed_size_flags(p)
     p.add_argument(
         "--camera",
         type=one_of("camera", CAMERAS),
@@ -101,14 +102,33 @@ def add_film_settings(p: argparse.ArgumentParser) -> None:
         type=number("speedup"),
         metavar="K",
         help="simulated seconds a second of video: one frame every K/fps simulated "
-        f"seconds, so K=4 makes a 4-minute build a 1-minute film; [0.1, 100] "
+        f"seconds, so K=4 makes a 4-minute build a 1-minute film; {SPEEDUP.text} "
         f"(default {d.speedup:g})",
     )
     p.add_argument(
         "--antialias",
         type=whole("antialias"),
         metavar="SAMPLES",
-        help=f"multisample anti-aliasing: 0, 2, 4 or 8, 4 costing ~1.7x (default {d.antialias})",
+        help=f"multisample anti-aliasing: {antialias_text()}, 4 costing ~1.7x "
+        f"(default {d.antialias})",
+    )
+
+
+def add_renamed_size_flags(p: argparse.ArgumentParser) -> None:
+    """--width and --height, refused naming their new names (hidden from the help)."""
+    p.add_argument(
+        "--width",
+        nargs="?",
+        help=argparse.SUPPRESS,
+        action=renamed(
+            "--video-width", "the video's width in pixels; a wall's course width is --wall-width"
+        ),
+    )
+    p.add_argument(
+        "--height",
+        nargs="?",
+        help=argparse.SUPPRESS,
+        action=renamed("--video-height", "the video's height in pixels"),
     )
 
 
