@@ -184,3 +184,77 @@ def test_the_cli_reference_says_exit_0_iff_every_check_held_and_names_them(tmp_p
     text = " ".join(section.split())
     assert "Exit 0 when the build succeeded: every check in `result.json`'s `checks` held" in text
     assert [n for n in names if f"`{n}`" not in section] == []
+
+
+def test_the_build_command_runs_the_library_build(tmp_path, capsys, monkeypatch, fake_build):
+    """`pyramid-sim build` is `pyramid_sim.build` with a progress report and a summary line:
+    one path from settings to result.json, not two."""
+    import pyramid_sim
+
+    calls = []
+    library_build = pyramid_sim.build
+
+    def spy(*args, **kwargs):
+        calls.append((args, kwargs))
+        return library_build(*args, **kwargs)
+
+    monkeypatch.setattr(pyramid_sim, "build", spy)
+    out = tmp_path / "run"
+    argv = ["build", "--structure", "wall", "--bricks", "3", "--wall-width", "2", "--quiet"]
+    assert main([*argv, "--arms", "left", "--friction", "0.8", "--out", str(out)]) == 0
+    ((args, kwargs),) = calls
+    assert args == ("wall",) and kwargs["out"] == out and kwargs["arms"] == "left"
+    assert (kwargs["bricks"], kwargs["width"], kwargs["config"].brick.friction) == (3, 2, 0.8)
+    doc = json.loads((out / "result.json").read_text())
+    assert doc["success"] and doc["inputs"]["settings"]["brick"]["friction"] == 0.8
+    assert _summary_of(capsys).startswith("built: 3/3 bricks in place, ")
+
+
+def test_the_library_build_saves_result_json_and_reports_through_its_hooks(tmp_path, fake_build):
+    import pyramid_sim
+
+    seen: dict = {"placed": [], "frames": 0}
+    fake_build.frames = 2
+    result = pyramid_sim.build(
+        "pyramid-even",
+        layers=1,
+        out=tmp_path / "run",
+        video=tmp_path / "films" / "b.mp4",
+        on_start=lambda plan: seen.update(bricks=len(plan.bricks)),
+        on_placed=seen["placed"].append,
+        on_frame=lambda n: seen.update(frames=n),
+    )
+    assert seen == {"bricks": 2, "placed": [1, 2], "frames": 6}
+    assert json.loads((tmp_path / "run" / "result.json").read_text()) == result.to_dict()
+    assert not list(tmp_path.rglob(".pyramid-sim.lock"))  # the folders were held, and let go
+
+
+def test_a_library_build_that_fails_leaves_no_folder_it_made(tmp_path, fake_build):
+    import pyramid_sim
+
+    def crash(i: int) -> None:
+        raise RuntimeError("the physics broke")
+
+    fake_build.during = crash
+    with pytest.raises(RuntimeError, match="the physics broke"):
+        pyramid_sim.build(layers=1, out=tmp_path / "a" / "run", snapshot=tmp_path / "s" / "b.png")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_library_build_refuses_an_unwritable_out_before_any_physics(tmp_path, fake_build):
+    import pyramid_sim
+    from pyramid_sim.errors import ConfigError
+
+    (tmp_path / "file").write_text("x")
+    fake_build.during = lambda i: pytest.fail("the build ran")
+    with pytest.raises(ConfigError, match="out: .*file' is not a folder"):
+        pyramid_sim.build(layers=1, out=tmp_path / "file" / "run")
+    assert [p.name for p in tmp_path.iterdir()] == ["file"]
+
+
+@pytest.mark.physics  # writes the compiled model
+def test_a_scene_into_a_folder_not_made_yet_makes_it(tmp_path, capsys):
+    out = tmp_path / "new" / "deeper" / "s.xml"
+    assert main(["scene", "--layers", "1", "--out", str(out)]) == 0
+    assert out.is_file() and (out.parent / "s_meshes").is_dir()
+    assert sorted(p.name for p in out.parent.iterdir()) == ["s.xml", "s_meshes"]

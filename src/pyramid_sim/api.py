@@ -11,6 +11,7 @@ validated before any physics runs; a bad value raises ConfigError naming its acc
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -50,30 +51,101 @@ def build(
     video: str | Path | None = None,
     snapshot: str | Path | None = None,
     video_config: VideoConfig | None = None,
+    out: str | Path | None = None,
+    on_start: Callable[[Plan], Any] | None = None,
+    on_placed: Callable[[int], Any] | None = None,
+    on_frame: Callable[[int], Any] | None = None,
     **options: Any,
 ) -> BuildResult:
     """Build the structure in the physics and return its judged result; `options` as for
     `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
     headless (whether or not MuJoCo was imported first), and a machine without a headless GL
-    backend is refused before any physics runs."""
-    config, spec = resolve(name, config, options, own=("arms", "video", "snapshot", "video_config"))
-    outputs = {".mp4": video, ".png": snapshot}
-    for suffix, path in outputs.items():
-        if path is not None and Path(path).suffix.lower() != suffix:
-            raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-    if video is not None:
-        check_film(video_config or VideoConfig(), config)
-    _prepare_gl(render=video is not None or snapshot is not None)
-    from .jobs.build import run_build
-    from .physics.reach import prepare
+    backend is refused before any physics runs. With `out`, the result is also saved as
+    `out/result.json`, the file `pyramid-sim build` writes.
 
+    The folders written (`out`, the video's, the still's) are held against a second run while
+    this one runs, and those it made are removed again if it fails. Progress hooks:
+    `on_start(plan)` once the plan is checked reachable and the folders held, `on_placed(n)`
+    when n bricks are placed, `on_frame(n)` when n frames are filmed."""
+    config, spec = resolve(name, config, options, own=BUILD_KEYWORDS)
     vc = video_config or VideoConfig()
-    return run_build(
-        prepare(spec, config, arms),
-        config,
-        video=(vc, Path(video)) if video is not None else None,
-        snapshot=(vc, Path(snapshot)) if snapshot is not None else None,
-    )
+    if video is not None:
+        check_film(vc, config)
+    films = _films(vc, video, snapshot)
+    folders = _written_folders(out, films)
+    prepare, run_build = _physics(render=bool(films))
+    plan = prepare(spec, config, arms)
+    from .output.files import removed_if_failed
+    from .output.lock import holding
+
+    with removed_if_failed([folder for folder, _ in folders]), holding(folders):
+        if on_start is not None:
+            on_start(plan)
+        result: BuildResult = run_build(
+            plan,
+            config,
+            on_placed=on_placed,
+            video=films.get(".mp4"),
+            on_frame=on_frame,
+            snapshot=films.get(".png"),
+        )
+        if out is not None:
+            result.save(Path(out) / "result.json")
+    return result
+
+
+BUILD_KEYWORDS = ("arms", "video", "snapshot", "video_config", "out", "on_start", "on_placed",
+                  "on_frame")  # fmt: skip
+
+
+def _films(
+    vc: VideoConfig, video: str | Path | None, snapshot: str | Path | None
+) -> dict[str, tuple[VideoConfig, Path]]:
+    """The film and the still asked for, by suffix; ConfigError for a path without its
+    suffix."""
+    films = {}
+    for suffix, path in ((".mp4", video), (".png", snapshot)):
+        if path is not None:
+            if Path(path).suffix.lower() != suffix:
+                raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
+            films[suffix] = (vc, Path(path))
+    return films
+
+
+def _written_folders(
+    out: str | Path | None, films: dict[str, tuple[VideoConfig, Path]]
+) -> list[tuple[Path, str]]:
+    """Each folder the build writes, as it is named in messages; ConfigError for one that
+    cannot be written (checked before any physics, and nothing is made)."""
+    from .output.files import check_writable_dir
+
+    folders = [(Path(out), "out")] if out is not None else []
+    folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
+    for folder, what in folders:
+        check_writable_dir(folder, what)
+    return folders
+
+
+def _physics(render: bool) -> tuple[Callable[..., Plan], Callable[..., BuildResult]]:
+    """The reach check and the build, imported (MuJoCo with them) under a headless GL backend
+    chosen first: the one MuJoCo binds on its first import, and the one the renderer makes its
+    context with after it. MachineError if `render` and none can be had, or MuJoCo cannot
+    load under it."""
+    from .output.gl_backend import choose_gl_backend, import_physics_for_rendering
+
+    try:
+        choose_gl_backend()
+    except MachineError:
+        if render:
+            raise
+    try:
+        from .jobs.build import run_build
+        from .physics.reach import prepare
+    except (ImportError, AttributeError, RuntimeError):
+        if render:
+            import_physics_for_rendering()  # MachineError naming the backend, if MuJoCo failed
+        raise
+    return prepare, run_build
 
 
 def _prepare_gl(render: bool) -> None:

@@ -12,12 +12,12 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from ..choices import ARM_CHOICES, ArmChoice
-from ..config import SimConfig, check_film
+from ..config import SimConfig
 from ..errors import ConfigError, MachineError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from ..output.result import BuildResult
-from .args import EXIT_FAILED, config_from_args, spec_from_args
+from .args import EXIT_FAILED, config_from_args, size_options, spec_from_args
 from .progress import Progress
 from .sweep_args import sweep_config_from_args
 from .video_args import video_config_from_args
@@ -35,62 +35,34 @@ def cmd_plan(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_outputs(args: argparse.Namespace) -> None:
-    check_writable_dir(args.out)
-    for path, suffix in ((args.video, ".mp4"), (args.snapshot, ".png")):
-        if path is not None:
-            if path.suffix.lower() != suffix:
-                raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-            check_writable_dir(path.parent, f"{suffix[1:]} path")
-
-
 def cmd_build(args: argparse.Namespace) -> int:
-    """Simulate one build into its held folders; exit 0 iff result.json says it succeeded."""
+    """Simulate one build through `pyramid_sim.build`, into its held folders; exit 0 iff
+    result.json says it succeeded."""
+    import pyramid_sim
+
     config = config_from_args(args)
     video_config = video_config_from_args(args)
-    if args.video is not None:
-        check_film(video_config, config)
-    spec = spec_from_args(args, config)
-    _check_outputs(args)
-    if args.video is not None or args.snapshot is not None:
-        from ..output.gl_backend import choose_gl_backend
-
-        choose_gl_backend()  # before mujoco is imported
-    from ..jobs.build import run_build
-    from ..physics.reach import prepare
-
-    plan = prepare(spec, config, args.arms)
-    video = (video_config, args.video) if args.video is not None else None
-    snapshot = (video_config, args.snapshot) if args.snapshot is not None else None
-    written = [
-        (args.out, "out"),
-        *(
-            (p.parent, f"{p.suffix[1:].lower()} path")
-            for p in (args.video, args.snapshot)
-            if p is not None
-        ),
-    ]
-    with (
-        removed_if_failed([folder for folder, _ in written]),
-        holding(written),
-        Progress(
-            "bricks",
-            len(plan.bricks),
-            "brick",
-            quiet=args.quiet,
-            count_unit="frame" if video is not None else None,
-        ) as progress,
-    ):
-        progress.start()
-        result = run_build(
-            plan,
-            config,
+    with Progress(
+        "bricks",
+        0,  # the plan's bricks, once it is made
+        "brick",
+        quiet=args.quiet,
+        count_unit="frame" if args.video is not None else None,
+    ) as progress:
+        result = pyramid_sim.build(
+            args.structure,
+            arms=args.arms,
+            config=config,
+            video=args.video,
+            snapshot=args.snapshot,
+            video_config=video_config,
+            out=args.out,
+            on_start=lambda plan: progress.start(total=len(plan.bricks)),
             on_placed=progress.advance_to,
-            video=video,
             on_frame=lambda n: progress.count(),
-            snapshot=snapshot,
+            goals=args.goals,
+            **size_options(args),
         )
-        result.save(args.out / "result.json")
     files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
     print(build_summary(result, files))
     return 0 if result.success else EXIT_FAILED
@@ -202,7 +174,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
         from ..output.scene_files import check_mesh_folder
 
         check_mesh_folder(args.out)
-    from ..physics.scene import write_scene
+    from ..output.scene_files import write_scene
 
     with removed_if_failed([args.out.parent]):
         model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)

@@ -43,10 +43,13 @@ class Progress:
         self._step = 0  # tenths of the work reported in plain lines so far
         self._bars: list[Any] = []
 
-    def start(self, done: int = 0) -> None:
-        """Begin timing, `done` units already finished before this run (reported, not rated)."""
+    def start(self, done: int = 0, *, total: int | None = None) -> None:
+        """Begin timing, `done` units already finished before this run (reported, not rated);
+        `total` when it was not known at the start (a build's bricks, once planned)."""
         if self.started is not None:
             return
+        if total is not None:
+            self.total = total
         self.n = self.initial = done
         self.started = self.clock()
         if self.quiet:
