@@ -203,7 +203,11 @@ def _write(tmp_path, name, text):
         ("g.json", '[{"x": 0.7, "y": 0, "z": 0.11}, {"x": 0.7, "y": 0.3}]', "row 2: no z"),
         ("g.json", '{"goals": [1, 2]}', "list of"),
         ("g.json", "{oops", "not JSON"),
-        ("g.json", '[{"x": 0.7, "y": "inf", "z": 0.11}]', "not a finite number"),
+        (
+            "g.json",
+            '[{"x": 0.7, "y": "inf", "z": 0.11}]',
+            r"y inf is out of range; accepted \[-10, 10\] m",
+        ),
     ],
 )
 def test_bad_goal_files_name_the_row(tmp_path, name, text, words):

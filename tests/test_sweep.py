@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -15,10 +16,10 @@ from pathlib import Path
 import pytest
 
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.sweep.runs import RunResult, make_row, run_builds
 from pyramid_sim.sweep.grid import SweepConfig, parse_axis
 from pyramid_sim.sweep.heatmaps import write_heatmaps
 from pyramid_sim.sweep.report import grid_rows, summary_table
+from pyramid_sim.sweep.runs import RunResult, make_row, run_builds
 from pyramid_sim.sweep.store import COLUMNS, SweepRow, SweepStore
 
 
@@ -438,3 +439,10 @@ def test_ray_not_installed_is_refused_before_anything_runs(monkeypatch):
     with pytest.raises(ConfigError, match="backend: unknown 'slurm'; accepted process, ray"):
         check_backend("slurm", None)
     check_backend("process", None)  # needs no Ray
+
+
+@pytest.mark.parametrize("text", ["0_5", "0.5,1_0", "0.5:1:1_0"])
+def test_a_sweep_value_with_digit_separators_is_refused_not_read_as_another(text):
+    """Python's float() reads 0_5 as 5: a sweep over brick mass would have weighed 5 kg."""
+    with pytest.raises(ConfigError, match=f"brick mass.*cannot read {re.escape(repr(text))}"):
+        parse_axis("brick_mass", text)

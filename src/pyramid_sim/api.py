@@ -176,6 +176,7 @@ RECORD_KEYWORDS = (
     "backend",
     "ray_address",
     "on_frame",
+    "on_episode",
     "arms",
 )
 
@@ -196,6 +197,7 @@ def record(
     backend: str = "process",
     ray_address: str | None = None,
     on_frame: Any = None,
+    on_episode: Any = None,
     config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
@@ -205,7 +207,9 @@ def record(
     layout or full: learning/variation.py) with its `randomize` parts;
     `workers` episodes at once, in processes here or as Ray tasks (`backend="ray"`, on the
     cluster at `ray_address` or a Ray started here). Episodes already in `out` are kept and not
-    run again.
+    run again. `on_frame(episode, its frames so far)` hears each frame (with workers, each
+    episode's all at once as it lands), `on_episode(episodes in the dataset)` the count before
+    the first is filmed and after each lands.
     `options` as for `build`. Returns the `Recorded` summary."""
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     from .learning.record import RecordConfig
@@ -229,7 +233,7 @@ def record(
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run
 
-    return run(Path(out), settings_, on_frame)
+    return run(Path(out), settings_, on_frame, on_episode)
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",

@@ -21,6 +21,8 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 # How much one learning episode differs from the next (learning/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
+# A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
+FPS_CHOICES = (10, 20, 25, 50, 100)
 # The first seed an evaluation scores (recordings start at 0: the two never overlap).
 EVAL_FIRST_SEED = 100_000
 # The Gymnasium ids pyramid_sim registers when imported: its own keys, and lerobot's.
@@ -28,6 +30,7 @@ ENV_ID = "pyramid_sim/Build-v0"
 LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"
 
 __all__ = [
+    "FPS_CHOICES",
     "ENV_ID",
     "LEROBOT_ENV_ID",
     "DEFAULT_VARIATION",

@@ -147,6 +147,29 @@ class Bound:
         """ConfigError naming the value and this range unless `value` is within it."""
         check_range(self.name, value, self.low, self.high, low_open=self.low_open)
 
+    @property
+    def whole_text(self) -> str:
+        """`low to high`: the range of a count."""
+        return f"{self.low:g} to {self.high:g}"
+
+    def check_whole(self, value: Any) -> None:
+        """ConfigError unless `value` is a whole number within the range."""
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int)
+            or not (self.low <= value <= self.high)
+        ):
+            raise ConfigError(f"{self.name}: {value!r} is out of range; accepted {self.whole_text}")
+
+
+# The ranges of a recording's and an evaluation's counts, read by their checks and their help.
+EPISODES = Bound("episodes", 1, 100_000)
+WORKERS = Bound("workers", 1, 64)
+MAX_STEPS = Bound("max steps", 1, 10_000_000)
+IMAGE_HEIGHT = Bound("image height", 16, 1080)  # pixels, even
+IMAGE_WIDTH = Bound("image width", 16, 1920)
+IMAGE_SIZE_TEXT = f"even, {IMAGE_HEIGHT.whole_text} high and {IMAGE_WIDTH.whole_text} wide"
+
 
 def span_text(low: float, high: float, low_open: bool = False) -> str:
     """`[low, high]`, or `(low, high]` when low is refused, numbers written compactly."""

@@ -385,7 +385,9 @@ def test_resuming_with_another_image_size_is_refused_leaving_the_dataset_as_it_w
     copy = tmp_path / "d"
     shutil.copytree(root, copy)
     before = {p: p.read_bytes() for p in copy.rglob("*") if p.is_file()}
-    with pytest.raises(pyramid_sim.ConfigError, match=r"image_size \[48, 64\], this run \[32, 32\]"):
+    with pytest.raises(
+        pyramid_sim.ConfigError, match=r"image_size \[48, 64\], this run \[32, 32\]"
+    ):
         pyramid_sim.record(
             copy, "pyramid", layers=1, episodes=3, cameras=CAMERAS, image_size=(32, 32)
         )
@@ -413,3 +415,26 @@ def test_ctrl_c_during_a_parallel_recording_stops_at_once_and_leaves_nothing(tmp
     assert time.monotonic() - start < 3.0, err
     assert proc.returncode == 130 and "Traceback" not in err
     assert not out.exists(), sorted(str(p) for p in out.rglob("*"))
+
+
+def test_the_progress_line_counts_every_frame_with_workers_and_a_resumed_runs_done(tmp_path):
+    """With two workers the line said "1 frames" for a whole episode; a resumed run counted
+    its episodes from 1."""
+
+    def run(episodes, *more):
+        done = subprocess.run(
+            [sys.executable, "-m", "pyramid_sim.cli", "record", "--structure", "pyramid",
+             "--layers", "1", "--episodes", str(episodes), "--cameras", "none",
+             "--out", str(tmp_path / "d"), *more],
+            capture_output=True, text=True, timeout=600,
+        )  # fmt: skip
+        assert done.returncode == 0, done.stderr
+        return done.stdout + done.stderr
+
+    first = run(2, "--workers", "2")
+    frames = json.loads((tmp_path / "d/meta/info.json").read_text())["total_frames"]
+    assert "episodes: 2/2 episodes (100%)" in first and f"{frames} frames\n" in first
+    second = run(3)
+    assert "episodes: 2/3 episodes done before" in second
+    total = json.loads((tmp_path / "d/meta/info.json").read_text())["total_frames"]
+    assert "3/3 episodes (100%)" in second and f", {total - frames} frames\n" in second

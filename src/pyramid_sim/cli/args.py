@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES
+from ..choices import ARM_CHOICES, BACKENDS, FPS_CHOICES, SCHEDULES
 from ..config import SPAWN_JITTER_MM, SimConfig
 from ..core.structures import (
     MAX_BRICKS,
@@ -21,7 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
-from ..params import PARAMS, parse_number, parse_whole
+from ..params import EPISODES, PARAMS, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT, PRESETS
 from .paths import path_problem
 
@@ -192,7 +192,7 @@ def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> No
 
     p.add_argument(
         "--episodes",
-        type=whole("episodes", "1 to 100000"),
+        type=whole("episodes", EPISODES.whole_text),
         default=episodes,
         help=f"{what}, seeds --seed, --seed + 1, ... (default {episodes})",
     )
@@ -206,7 +206,7 @@ def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> No
     )
     p.add_argument(
         "--fps",
-        type=whole("fps", "10, 20, 25, 50 or 100"),
+        type=whole("fps", ", ".join(map(str, FPS_CHOICES))),
         default=25,
         help="the environment's step rate, a dataset's frames a second (of the 100 Hz "
         "control): 10, 20, 25, 50 or 100 (default 25)",

@@ -10,6 +10,7 @@ from ..choices import EVAL_FIRST_SEED
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
+from ..params import MAX_STEPS
 from .args import (
     add_episode_args,
     add_out_args,
@@ -40,7 +41,7 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
     add_episode_args(p, 10, "episodes scored")
     p.add_argument(
         "--max-steps",
-        type=whole("max steps", "1 to 10000000"),
+        type=whole("max steps", MAX_STEPS.whole_text),
         default=None,
         help="an episode's step limit (default 30 s a brick and 30 s more)",
     )

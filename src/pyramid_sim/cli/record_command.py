@@ -9,7 +9,7 @@ from typing import Any
 from ..errors import ConfigError
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
-from ..params import parse_whole
+from ..params import IMAGE_SIZE_TEXT, WORKERS, parse_whole
 from .args import (
     add_backend_args,
     add_episode_args,
@@ -30,7 +30,7 @@ def image_size(text: str) -> tuple[int, int]:
         parts = [parse_whole(v) for v in text.lower().split("x")]
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"image size: {text!r} is not a size; accepted N or HxW, even, 16 to 1080 x 1920"
+            f"image size: {text!r} is not a size; accepted N or HxW, {IMAGE_SIZE_TEXT}"
         ) from None
     if len(parts) == 1:
         return parts[0], parts[0]
@@ -68,7 +68,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--workers",
-        type=whole("workers", "1 to 64"),
+        type=whole("workers", WORKERS.whole_text),
         default=1,
         help="episodes filmed at once, each in a process or a Ray task (default 1)",
     )
@@ -96,15 +96,15 @@ def cmd_record(args: argparse.Namespace) -> int:
             "episodes", args.episodes, "episode", quiet=args.quiet, count_unit="frame"
         ) as progress,
     ):
-        progress.start()
-        done = {"episode": -1}
+        filmed: dict[int, int] = {}
 
         def on_frame(episode: int, frames: int) -> None:
-            if episode != done["episode"]:
-                if done["episode"] >= 0:
-                    progress.advance()
-                done["episode"] = episode
-            progress.count()
+            progress.count(frames - filmed.get(episode, 0))  # with workers, a whole episode
+            filmed[episode] = frames
+
+        def on_episode(episodes: int) -> None:
+            progress.start(episodes)  # the first call: those a resumed run found done
+            progress.advance_to(episodes)
 
         recorded = pyramid_sim.record(
             args.out,
@@ -116,6 +116,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             cameras=cameras,
             image_size=args.image_size,
             on_frame=on_frame,
+            on_episode=on_episode,
             variation=args.variation,
             randomize=_names(args.randomize),
             workers=args.workers,

@@ -20,6 +20,7 @@ from ..choices import EVAL_FIRST_SEED
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..output.files import atomic_path, write_json_atomic
+from ..params import EPISODES, MAX_STEPS
 from ..version import __version__
 from .env import BuildEnv
 from .layout import check_seed, control_steps
@@ -53,14 +54,13 @@ class EvaluateConfig:
     max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
 
     def __post_init__(self) -> None:
-        if not 1 <= self.episodes <= 100_000:
-            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
+        EPISODES.check_whole(self.episodes)
         check_level(self.variation)
         control_steps(self.fps, MotionConfig().control_dt)
         check_seed(self.first_seed)
         check_seed(self.first_seed + self.episodes - 1)
-        if self.max_steps is not None and not 1 <= self.max_steps <= 10_000_000:
-            raise ConfigError(f"max steps: {self.max_steps}; accepted 1 to 10000000")
+        if self.max_steps is not None and not MAX_STEPS.low <= self.max_steps <= MAX_STEPS.high:
+            raise ConfigError(f"max steps: {self.max_steps}; accepted {MAX_STEPS.whole_text}")
         if not 0 <= self.videos <= self.episodes:
             raise ConfigError(
                 f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"

@@ -10,14 +10,14 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from ..choices import CAMERAS
+from ..choices import CAMERAS, FPS_CHOICES
 from ..errors import ConfigError
+from ..params import IMAGE_HEIGHT, IMAGE_SIZE_TEXT, IMAGE_WIDTH
 from ..physics import names as c
 from ..physics.handles import SceneHandles
 from ..robots import RobotDescription
 
 BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
-FPS_CHOICES = (10, 20, 25, 50, 100)  # a dataset's frame rates, an environment's step rates
 DEFAULT_FPS = 25
 
 
@@ -113,8 +113,8 @@ def control_steps(fps: int, control_dt: float) -> int:
 
 
 def check_image_size(size: tuple[int, int]) -> tuple[int, int]:
-    """(height, width) as two whole numbers; ConfigError unless both are even, 16 to 1080
-    high and 16 to 1920 wide."""
+    """(height, width) as two whole numbers; ConfigError unless both are even and within
+    IMAGE_HEIGHT and IMAGE_WIDTH."""
     try:
         height, width = (int(v) for v in size)
         whole = all(int(v) == v for v in size)
@@ -122,12 +122,12 @@ def check_image_size(size: tuple[int, int]) -> tuple[int, int]:
         height = width = 0
         whole = False
     if not (
-        whole and 16 <= height <= 1080 and 16 <= width <= 1920 and height % 2 == width % 2 == 0
+        whole
+        and IMAGE_HEIGHT.low <= height <= IMAGE_HEIGHT.high
+        and IMAGE_WIDTH.low <= width <= IMAGE_WIDTH.high
+        and height % 2 == width % 2 == 0
     ):
-        raise ConfigError(
-            f"image size: {size!r}; accepted (height, width), even, 16 to 1080 high and 16 to "
-            "1920 wide"
-        )
+        raise ConfigError(f"image size: {size!r}; accepted (height, width), {IMAGE_SIZE_TEXT}")
     return height, width
 
 

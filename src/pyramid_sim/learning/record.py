@@ -61,25 +61,27 @@ def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
 
 
 def record(
-    out: Path, config: RecordConfig, on_frame: Callable[[int, int], Any] | None = None
+    out: Path,
+    config: RecordConfig,
+    on_frame: Callable[[int, int], Any] | None = None,
+    on_episode: Callable[[int], Any] | None = None,
 ) -> Recorded:
-    """Record the episodes `out` lacks; `on_frame(episode, frames so far)` after each frame
-    (with workers, once an episode lands, with all its frames)."""
+    """Record the episodes `out` lacks; `on_frame(episode, its frames so far)` after each
+    frame (with workers, once an episode lands, with all its frames); `on_episode(episodes in
+    the dataset)` before the first is filmed and after each lands."""
     env = make_env(config)
     check_cameras(config.cameras, env.config.robot_description)
     check_differ(
         config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
     )
-    feats = features(env, config)
-    robot_type = f"{env.config.robot_description.name}_bimanual"
-    task = task_text(env)
     records = _records(out)
     _check_same_recording(out, records, config)
     _clear_unrecorded(out, set(records))
-    stats = meta.aggregate([r["row"] for r in records.values()]) if records else None
-    frames_before = _FramesBefore({i: r["row"]["length"] for i, r in records.items()})
-    added = 0
+    dataset = _Landing(out, env, config, records)
     missing = [e for e in range(config.episodes) if e not in records]
+    parallel = config.workers > 1 or config.backend == "ray"
+    if on_episode is not None:
+        on_episode(len(records))
 
     def film_here(episode: int) -> dict[str, Any]:
         return film_staged(env, config, episode, out, on_frame)
@@ -94,51 +96,67 @@ def record(
             backend=config.backend,
             address=config.ray_address,
         ):
-            episode, end = result["episode"], result["end"]
-            if config.workers > 1 or config.backend == "ray":
-                if on_frame is not None:
-                    on_frame(episode, result["row"]["length"])
+            if parallel and on_frame is not None:
+                on_frame(result["episode"], result["row"]["length"])
             with signals_held():  # the files and the record land together
-                row = land(out, result, frames_before(episode))
-                frames_before.add(episode, row["length"])
-                records[episode] = {
-                    "episode_index": episode,
-                    "seed": config.first_seed + episode,
-                    "task": task,
-                    "fps": config.fps,
-                    "features": list(feats),
-                    "success": end.success,
-                    "failure": end.failure,
-                    "randomization": result["randomization"],
-                    "result": end.result,
-                    "config": _settings(config),
-                    "row": _jsonable(row),
-                }
-                _write_text(
-                    out / RECORDS / f"episode_{episode:06d}.json",
-                    json.dumps(records[episode], indent=1) + "\n",
-                )
-                if added == 0:  # this run's first: the files every episode shares
-                    meta.write_tasks(out, task)
-                    _write_text(
-                        out / DATASET_DOC, json.dumps(_dataset_doc(env, config), indent=1) + "\n"
-                    )
-                stats = meta.merge_stats(stats, row["stats"])
-                meta.write_stats(out, stats)
-                group = meta.episodes_location(episode)
-                meta.write_episodes_file(
-                    out,
-                    [r["row"] for i, r in records.items() if meta.episodes_location(i) == group],
-                    task,
-                )
-                meta.write_info(out, len(records), frames_before.total, config.fps,
-                                robot_type, feats)  # fmt: skip
-            added += 1
+                dataset.land(result)
+            if on_episode is not None:
+                on_episode(len(records))
     finally:
         env.close()
         shutil.rmtree(out / STAGING, ignore_errors=True)
     failed = tuple(sorted(i for i, r in records.items() if not r["success"]))
-    return Recorded(out, len(records), frames_before.total, added, failed)
+    return Recorded(out, len(records), dataset.frames_before.total, dataset.added, failed)
+
+
+class _Landing:
+    """The dataset as episodes land: each landing writes the episode's files and record, and
+    updates the metadata at a cost that does not grow with the episodes before it."""
+
+    def __init__(
+        self, out: Path, env: BuildEnv, config: RecordConfig, records: dict[int, dict[str, Any]]
+    ) -> None:
+        self.out, self.env, self.config, self.records = out, env, config, records
+        self.features = features(env, config)
+        self.task = task_text(env)
+        self.robot_type = f"{env.config.robot_description.name}_bimanual"
+        rows = [r["row"] for r in records.values()]
+        self.stats = meta.aggregate(rows) if rows else None
+        self.frames_before = _FramesBefore({i: r["row"]["length"] for i, r in records.items()})
+        self.groups: dict[tuple[int, int], dict[int, dict[str, Any]]] = {}
+        for index, rec in records.items():
+            self.groups.setdefault(meta.episodes_location(index), {})[index] = rec["row"]
+        self.added = 0
+
+    def land(self, result: dict[str, Any]) -> None:
+        out, config, episode, end = self.out, self.config, result["episode"], result["end"]
+        row = land(out, result, self.frames_before(episode))
+        self.frames_before.add(episode, row["length"])
+        self.records[episode] = record = {
+            "episode_index": episode,
+            "seed": config.first_seed + episode,
+            "task": self.task,
+            "fps": config.fps,
+            "features": list(self.features),
+            "success": end.success,
+            "failure": end.failure,
+            "randomization": result["randomization"],
+            "result": end.result,
+            "config": _settings(config),
+            "row": _jsonable(row),
+        }
+        _write_text(out / RECORDS / f"episode_{episode:06d}.json", json.dumps(record, indent=1))
+        if self.added == 0:  # this run's first: the files every episode shares
+            meta.write_tasks(out, self.task)
+            _write_text(out / DATASET_DOC, json.dumps(_dataset_doc(self.env, config), indent=1))
+        self.stats = meta.merge_stats(self.stats, row["stats"])
+        meta.write_stats(out, self.stats)
+        group = self.groups.setdefault(meta.episodes_location(episode), {})
+        group[episode] = record["row"]
+        meta.write_episodes_file(out, list(group.values()), self.task)
+        meta.write_info(out, len(self.records), self.frames_before.total, config.fps,
+                        self.robot_type, self.features)  # fmt: skip
+        self.added += 1
 
 
 class _FramesBefore:
@@ -210,7 +228,7 @@ def _short(value: Any) -> str:
 
 
 def _write_text(path: Path, text: str) -> None:
-    write_atomic(path, lambda tmp: tmp.write_text(text))
+    write_atomic(path, lambda tmp: tmp.write_text(text + "\n"))
 
 
 def _jsonable(row: dict[str, Any]) -> dict[str, Any]:

@@ -9,6 +9,7 @@ from typing import Any
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
+from ..params import EPISODES, WORKERS
 from .layout import check_image_size, control_steps
 from .variation import DEFAULT_LEVEL, check_level
 
@@ -33,13 +34,11 @@ class RecordConfig:
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
 
     def __post_init__(self) -> None:
-        if not 1 <= self.episodes <= 100_000:
-            raise ConfigError(f"episodes: {self.episodes} is out of range; accepted 1 to 100000")
+        EPISODES.check_whole(self.episodes)
         control_steps(self.fps, MotionConfig().control_dt)
         check_image_size(self.image_size)
         check_level(self.variation)
-        if not 1 <= self.workers <= 64:
-            raise ConfigError(f"workers: {self.workers} is out of range; accepted 1 to 64")
+        WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
         if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
             raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")

@@ -15,7 +15,7 @@ from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
-from ..params import PARAMS, check_range, param
+from ..params import PARAMS, check_range, param, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT
 
 MAX_POINTS_PER_AXIS = 50
@@ -48,8 +48,8 @@ def parse_axis(name: str, text: str) -> Axis:
             parts = text.split(":")
             if len(parts) != 3:
                 raise ValueError
-            start, stop, count_text = float(parts[0]), float(parts[1]), parts[2]
-            count = int(count_text)
+            start, stop, count_text = parse_number(parts[0]), parse_number(parts[1]), parts[2]
+            count = parse_whole(count_text)
             if not 1 <= count <= MAX_POINTS_PER_AXIS:
                 raise ConfigError(f"{label}: {count} points in {text!r}; {form}")
             if count == 1 and start != stop:
@@ -57,7 +57,7 @@ def parse_axis(name: str, text: str) -> Axis:
             step = (stop - start) / (count - 1) if count > 1 else 0.0
             values = tuple(start + i * step for i in range(count))
         else:
-            values = tuple(float(v) for v in text.split(","))
+            values = tuple(parse_number(v.strip()) for v in text.split(","))
     except ValueError as err:
         if isinstance(err, ConfigError):
             raise
