@@ -149,8 +149,8 @@ class Bound:
 
     @property
     def whole_text(self) -> str:
-        """`low to high`: the range of a count."""
-        return f"{self.low:g} to {self.high:g}"
+        """`low to high`: the range of a count, its ends written whole (1 to 10000000)."""
+        return f"{int(self.low)} to {int(self.high)}"
 
     def check_whole(self, value: Any) -> None:
         """ConfigError unless `value` is a whole number within the range."""
