@@ -12,14 +12,22 @@ ROOT = Path(__file__).resolve().parents[1]
 WRITER = ROOT / "src/pyramid_sim/output/files.py"
 
 
+RENAMERS = ("os.replace", "os.rename", "tempfile.mkstemp", "shutil.move")
+
+
 def _renames(path: Path) -> list[str]:
-    """Calls of os.replace, os.rename and tempfile.mkstemp in `path`."""
+    """Calls of os.replace, os.rename, tempfile.mkstemp and shutil.move in `path`, and those
+    functions imported by name."""
     found = []
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute):
             name = ast.unparse(node.func)
-            if name in ("os.replace", "os.rename", "tempfile.mkstemp"):
+            if name in RENAMERS:
                 found.append(f"{path.relative_to(ROOT)}:{node.lineno} {name}")
+        if isinstance(node, ast.ImportFrom) and node.module in ("os", "tempfile", "shutil"):
+            for alias in node.names:
+                if f"{node.module}.{alias.name}" in RENAMERS:
+                    found.append(f"{path.relative_to(ROOT)}:{node.lineno} {alias.name}")
     return found
 
 

@@ -35,11 +35,14 @@ def _modules() -> dict[str, Path]:
     return found
 
 
+TYPE_CHECKING_TESTS = ("TYPE_CHECKING", "typing.TYPE_CHECKING")  # not `if not TYPE_CHECKING:`
+
+
 def _type_checking_only(tree: ast.Module) -> set[int]:
     """Line numbers inside `if TYPE_CHECKING:` blocks."""
     lines: set[int] = set()
     for node in ast.walk(tree):
-        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+        if isinstance(node, ast.If) and ast.unparse(node.test) in TYPE_CHECKING_TESTS:
             for child in node.body:
                 lines.update(range(child.lineno, (child.end_lineno or child.lineno) + 1))
     return lines

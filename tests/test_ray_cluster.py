@@ -266,7 +266,8 @@ def test_a_sweep_runs_on_a_two_node_cluster_started_with_ray_start(cluster, tmp_
     assert len(list((out / "runs").glob("*.json"))) == 2
     assert (out / "sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # One CPU a node and two builds at once: each node ran one of them.
-    ran_on = _nodes_that_ran(cluster["temp_dir"] / "session_latest" / "logs", "run_one")
+    # the job runner's Ray task, jobs/runner.py's _call, runs each build (sweep/runs.py's run_one)
+    ran_on = _nodes_that_ran(cluster["temp_dir"] / "session_latest" / "logs", "_call")
     assert ran_on == {n["id"] for n in nodes}, (ran_on, nodes)
 
 

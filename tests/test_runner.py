@@ -4,6 +4,7 @@ thread, and closing the run stops every worker at once."""
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import time
 
@@ -23,7 +24,22 @@ def _work(job: int) -> dict:
         time.sleep(60)
     if job == 3:
         raise ValueError("no such brick")
-    return {"job": job, "pid": os.getpid(), "blas": os.environ.get("OPENBLAS_NUM_THREADS")}
+    return {"job": job, "pid": os.getpid(), "blas": _blas_threads()}
+
+
+def _blas_threads() -> int:
+    """The threads numpy's OpenBLAS runs, asked of the library itself."""
+    import ctypes
+
+    import numpy  # noqa: F401  loads OpenBLAS
+
+    with open("/proc/self/maps") as maps:
+        library = sorted({line.split()[-1] for line in maps if "openblas" in line.lower()})[0]
+    blas = ctypes.CDLL(library)
+    for name in ("scipy_openblas_get_num_threads64_", "openblas_get_num_threads"):
+        if hasattr(blas, name):
+            return int(getattr(blas, name)())
+    raise AssertionError(f"{library} tells no thread count")
 
 
 def _sleepy(job: int) -> int:
@@ -45,7 +61,7 @@ def test_crashes_exceptions_and_timeouts_end_as_failures_and_the_others_go_on():
 def test_workers_run_one_blas_thread_and_the_parent_keeps_its_own(monkeypatch):
     monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
     (end,) = run_jobs(_work, [0], workers=1)
-    assert end.value["blas"] == "1"
+    assert end.value["blas"] == 1  # OpenBLAS itself, which took 2 when set after numpy loaded
     assert end.value["pid"] != os.getpid()
     assert "OPENBLAS_NUM_THREADS" not in os.environ
 
@@ -73,3 +89,16 @@ def test_closing_the_run_stops_every_worker_at_once():
     assert time.monotonic() - start < 2.0
     with pytest.raises(ProcessLookupError):
         os.kill(pid, 0)
+    assert multiprocessing.active_children() == []  # the two still sleeping are gone too
+
+
+def test_a_ray_tasks_failure_reads_as_the_process_backends():
+    from pyramid_sim.jobs.runner import _ray_reason
+
+    class TaskError(Exception):
+        cause = ValueError("no such brick")
+
+    assert _ray_reason(TaskError("ray::_call() (pid=7, ip=1.2.3.4)\n  ...")) == (
+        "ValueError: no such brick"
+    )
+    assert _ray_reason(RuntimeError("")) == "RuntimeError: "

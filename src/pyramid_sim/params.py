@@ -165,6 +165,8 @@ class Bound:
 # The ranges of a recording's and an evaluation's counts, read by their checks and their help.
 EPISODES = Bound("episodes", 1, 100_000)
 WORKERS = Bound("workers", 1, 64)
+SWEEP_WORKERS = Bound("workers", 1, 256)  # a sweep's runs at once: a Ray cluster has many
+REPEATS = Bound("repeats", 1, 100)  # a sweep's runs a grid point
 MAX_STEPS = Bound("max steps", 1, 10_000_000)
 IMAGE_HEIGHT = Bound("image height", 16, 1080)  # pixels, even
 IMAGE_WIDTH = Bound("image width", 16, 1920)

@@ -8,7 +8,7 @@ import os
 from pathlib import Path
 
 from ..config import SPAWN_JITTER_MM, SimConfig
-from ..params import PARAMS
+from ..params import PARAMS, REPEATS, SWEEP_WORKERS
 from ..sweep.grid import SweepConfig, parse_axis
 from .args import (
     add_backend_args,
@@ -41,9 +41,9 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
     add_structure_args(p)
     p.add_argument(
         "--repeats",
-        type=whole("repeats"),
+        type=whole("repeats", REPEATS.whole_text),
         default=1,
-        help="runs a point, seeds 0, 1, ... of the spawn jitter (1 to 100, default 1)",
+        help=f"runs a point, seeds 0, 1, ... of the spawn jitter ({REPEATS.whole_text}, default 1)",
     )
     p.add_argument(
         "--spawn-jitter",
@@ -55,7 +55,7 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--workers",
-        type=whole("workers"),
+        type=whole("workers", SWEEP_WORKERS.whole_text),
         default=os.cpu_count() or 1,
         help="runs at once (default: the CPU count)",
     )

@@ -3,8 +3,9 @@
 Sweeps (a build per grid point) and recordings (an episode per seed) run here, so both get the
 same handling: a job that raises, kills its worker or passes its timeout ends as a failure
 naming why, and the others go on; workers run one BLAS thread, set before they import numpy;
-a job's timeout counts from when its worker is ready (imports done), not from when it was
-queued; and an interrupted run kills its workers at once.
+on worker processes a job's timeout counts from when its worker is ready (imports done), not
+from when it was queued (on Ray, from when it is submitted); and closing the run, or an
+interrupt, kills its workers at once.
 """
 
 from __future__ import annotations
@@ -116,9 +117,14 @@ class _Worker:
         self.busy = False
         self.started = 0.0
 
-    def assign(self, job: Any) -> None:
+    def assign(self, job: Any) -> bool:
+        """Hand `job` over; False if the worker died while idle (it is replaced)."""
+        try:
+            self.conn.send(job)
+        except (BrokenPipeError, OSError):
+            return False
         self.job, self.busy, self.started = job, True, time.monotonic()
-        self.conn.send(job)
+        return True
 
     def end(self, timeout: float | None) -> JobEnd | None:
         """The job's end if it has one now (its value, a crash or a timeout); marks the worker
@@ -135,10 +141,11 @@ class _Worker:
                                 None if kind == "done" else f"crashed: {payload}")  # fmt: skip
         if not self.proc.is_alive():
             self.proc.join()
-            if not self.busy:
-                code = self.proc.exitcode
-                raise PyramidSimError(f"a worker process failed to start (exit status {code})")
             code = self.proc.exitcode
+            if not self.ready:  # its imports failed: every worker would, so the run stops
+                raise PyramidSimError(f"a worker process failed to start (exit status {code})")
+            if not self.busy:  # died idle: replaced, no job lost
+                return None
             how = f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
             return self._finish(None, f"crashed: the worker process ended ({how})")
         if self.busy and timeout is not None and time.monotonic() - self.started > timeout:
@@ -174,7 +181,9 @@ def _run_processes(
                 pool.append(_Worker(ctx, work, warm))
             for worker in pool:
                 if worker.ready and not worker.busy and pending:
-                    worker.assign(pending.popleft())
+                    job = pending.popleft()
+                    if not worker.assign(job):
+                        pending.appendleft(job)
             deadlines = [w.started + timeout for w in pool if w.busy and timeout is not None]
             wait = max(0.0, min(deadlines) - time.monotonic()) if deadlines else None
             waitables = [w.conn for w in pool] + [w.proc.sentinel for w in pool]
@@ -195,8 +204,18 @@ def _run_processes(
 
 
 def _call(work: Callable[[Any], Any], job: Any) -> Any:
-    """A Ray task: `work` may be any picklable callable, Ray's decorator wants a function."""
+    """A Ray task (Ray's logs name every one `_call`): `work` may be any picklable callable,
+    Ray's decorator wants a function."""
     return work(job)
+
+
+def _ray_reason(err: Exception) -> str:
+    """What went wrong in a Ray task, as the process backend says it (a task's own exception
+    is its `cause`; Ray's message starts with a header naming the task)."""
+    cause = getattr(err, "cause", None)
+    if isinstance(cause, Exception):
+        return f"{type(cause).__name__}: {cause}"
+    return f"{type(err).__name__}: {(str(err).splitlines() or [''])[0]}"
 
 
 def _run_ray(
@@ -206,8 +225,9 @@ def _run_ray(
     timeout: float | None,
     address: str | None,
 ) -> Generator[JobEnd, None, None]:
-    """At most `workers` tasks at once. Ray's workers are started with its session, so a
-    task's clock starts when it is submitted."""
+    """At most `workers` tasks at once. A task's clock starts when it is submitted: Ray starts
+    its worker processes itself, and the first task on each pays for the process and its
+    imports (worker processes here start the clock once their imports are done)."""
     from .ray_session import ray_session
 
     with ray_session(address, workers) as ray:
@@ -231,7 +251,7 @@ def _run_ray(
                     try:
                         end = JobEnd(job, ray.get(ref), None, time.monotonic() - start)
                     except ray.exceptions.RayError as err:
-                        reason = f"crashed: {type(err).__name__}: {str(err).splitlines()[0]}"
+                        reason = f"crashed: {_ray_reason(err)}"
                         end = JobEnd(job, None, reason, time.monotonic() - start)
                     yield end
                 for ref, (job, start) in list(running.items()):

@@ -89,7 +89,7 @@ def film_staged(
     return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
 
 
-_WORKER_ENV: dict[str, BuildEnv] = {}
+_WORKER_ENV: dict[str, Any] = {}  # this process's environment and the recording it is for
 
 
 @dataclass(frozen=True)
@@ -100,8 +100,10 @@ class FilmAway:
     config: RecordConfig
 
     def __call__(self, episode: int, out: Path) -> dict[str, Any]:
-        if "env" not in _WORKER_ENV:
-            _WORKER_ENV["env"] = make_env(self.config)
+        if _WORKER_ENV.get("config") != self.config:  # a Ray worker may serve two recordings
+            if "env" in _WORKER_ENV:
+                _WORKER_ENV.pop("env").close()
+            _WORKER_ENV["env"], _WORKER_ENV["config"] = make_env(self.config), self.config
         return film_staged(_WORKER_ENV["env"], self.config, episode, out)
 
 

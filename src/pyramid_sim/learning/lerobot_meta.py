@@ -39,8 +39,8 @@ def merge_stats(
 ) -> dict[str, dict[str, np.ndarray]]:
     """The statistics of the frames behind `total` and `episode` together: counts add up,
     means and variances pool, extremes extend, and quantiles widen to the envelope of the
-    two (lower quantiles the least, upper the greatest), as lerobot's aggregate does: exact
-    quantiles cannot be had from summaries."""
+    two (lower quantiles the least, upper the greatest), as lerobot's aggregate does after
+    0.6.1 (0.6.1 averaged them): exact quantiles cannot be had from summaries."""
     merged: dict[str, dict[str, np.ndarray]] = {}
     for key, part in episode.items():
         b = {k: np.asarray(v, dtype=np.float64) for k, v in part.items()}
@@ -158,6 +158,11 @@ def write_episodes_file(root: Path, rows: list[dict[str, Any]], task: str) -> No
     table = pa.table(columns)
     path = root / EPISODES_FILE.format(chunk_index=chunk, file_index=file)
     write_atomic(path, lambda tmp: pq.write_table(table, tmp), ".part")
+
+
+def rows_in(path: Path) -> int:
+    """How many rows a parquet file holds (from its footer)."""
+    return int(pq.read_metadata(path).num_rows)
 
 
 def _write_json(path: Path, document: dict[str, Any]) -> None:

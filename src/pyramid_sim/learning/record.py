@@ -10,9 +10,11 @@ Resuming refuses a folder recorded with other settings, since they shape the fil
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from bisect import bisect_left
 from collections.abc import Callable
+from contextlib import closing
 from dataclasses import asdict
 from pathlib import Path
 from typing import Any
@@ -49,13 +51,17 @@ def _records(root: Path) -> dict[int, dict[str, Any]]:
 
 def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
     """Files of an episode that never made it into the dataset (a run killed outright, or
-    halfway through writing), and every temporary file, go."""
-    for path in [*root.glob("data/*/*"), *root.glob("videos/*/*/*")]:
-        if path.name.endswith(".part"):
+    halfway through writing), and the dataset's temporary files, go; files of other names
+    are not the dataset's and stay."""
+    for path in [*root.glob("data/chunk-*/*"), *root.glob("videos/*/chunk-*/*")]:
+        if re.fullmatch(r"\.file-\d{3}\..*\.part", path.name):
             path.unlink()
             continue
-        chunk, file = int(path.parent.name.split("-")[1]), int(path.stem.split("-")[1])
-        if chunk * fmt.CHUNK_SIZE + file not in recorded:
+        chunk, file = (
+            re.fullmatch(r"chunk-(\d{3})", path.parent.name),
+            re.fullmatch(r"file-(\d{3})\.(parquet|mp4)", path.name),
+        )
+        if chunk and file and int(chunk[1]) * fmt.CHUNK_SIZE + int(file[1]) not in recorded:
             path.unlink()
     shutil.rmtree(root / STAGING, ignore_errors=True)
 
@@ -69,25 +75,25 @@ def record(
     """Record the episodes `out` lacks; `on_frame(episode, its frames so far)` after each
     frame (with workers, once an episode lands, with all its frames); `on_episode(episodes in
     the dataset)` before the first is filmed and after each lands."""
-    env = make_env(config)
-    check_cameras(config.cameras, env.config.robot_description)
-    check_differ(
-        config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
-    )
     records = _records(out)
-    _check_same_recording(out, records, config)
-    _clear_unrecorded(out, set(records))
-    dataset = _Landing(out, env, config, records)
-    missing = [e for e in range(config.episodes) if e not in records]
-    parallel = config.workers > 1 or config.backend == "ray"
-    if on_episode is not None:
-        on_episode(len(records))
-
-    def film_here(episode: int) -> dict[str, Any]:
-        return film_staged(env, config, episode, out, on_frame)
-
+    _check_same_recording(out, records, config)  # before the scene is compiled
+    env = make_env(config)
     try:
-        for result in staged(
+        check_cameras(config.cameras, env.config.robot_description)
+        check_differ(
+            config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
+        )
+        _clear_unrecorded(out, set(records))
+        dataset = _Landing(out, env, config, records)
+        missing = [e for e in range(config.episodes) if e not in records]
+        parallel = config.workers > 1 or config.backend == "ray"
+        if on_episode is not None:
+            on_episode(len(records))
+
+        def film_here(episode: int) -> dict[str, Any]:
+            return film_staged(env, config, episode, out, on_frame)
+
+        episodes = staged(
             missing,
             out,
             film_here,
@@ -95,13 +101,16 @@ def record(
             workers=config.workers,
             backend=config.backend,
             address=config.ray_address,
-        ):
-            if parallel and on_frame is not None:
-                on_frame(result["episode"], result["row"]["length"])
-            with signals_held():  # the files and the record land together
-                dataset.land(result)
-            if on_episode is not None:
-                on_episode(len(records))
+            warm=("pyramid_sim.learning.filming",),  # MuJoCo, mink and the environment
+        )
+        with closing(episodes):  # an interrupt stops every worker at once
+            for result in episodes:
+                if parallel and on_frame is not None:
+                    on_frame(result["episode"], result["row"]["length"])
+                with signals_held():  # the files and the record land together
+                    dataset.land(result)
+                if on_episode is not None:
+                    on_episode(len(records))
     finally:
         env.close()
         shutil.rmtree(out / STAGING, ignore_errors=True)
@@ -127,6 +136,22 @@ class _Landing:
         for index, rec in records.items():
             self.groups.setdefault(meta.episodes_location(index), {})[index] = rec["row"]
         self.added = 0
+        if records:
+            self._repair()
+
+    def _repair(self) -> None:
+        """The metadata of the episodes already in the dataset, written again where a run
+        killed between an episode's record and its metadata left it short: once a run, and
+        a meta/episodes file only if its rows are not its episodes'."""
+        out, config = self.out, self.config
+        for (chunk, file), rows in self.groups.items():
+            path = out / meta.EPISODES_FILE.format(chunk_index=chunk, file_index=file)
+            if not path.exists() or meta.rows_in(path) != len(rows):
+                meta.write_episodes_file(out, list(rows.values()), self.task)
+        if self.stats is not None:
+            meta.write_stats(out, self.stats)
+        meta.write_info(out, len(self.records), self.frames_before.total, config.fps,
+                        self.robot_type, self.features)  # fmt: skip
 
     def land(self, result: dict[str, Any]) -> None:
         out, config, episode, end = self.out, self.config, result["episode"], result["end"]

@@ -40,8 +40,11 @@ class RecordConfig:
         check_level(self.variation)
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
-        if not 0 <= self.first_seed <= 2**32 - 1 - self.episodes:
-            raise ConfigError(f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - 1")
+        if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
+            raise ConfigError(
+                f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "
+                f"{self.episodes} (the last of {self.episodes} episodes' seeds below 2**32)"
+            )
 
 
 @dataclass(frozen=True)

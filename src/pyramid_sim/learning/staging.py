@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import shutil
 import tempfile
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -85,10 +85,12 @@ def staged(
     workers: int = 1,
     backend: str = "process",
     address: str | None = None,
-) -> Iterator[dict[str, Any]]:
+    warm: tuple[str, ...] = (),
+) -> Generator[dict[str, Any], None, None]:
     """The episodes filmed, yielded in episode order: here one after another, or by the job
-    runner on `workers` processes or Ray tasks (`backend`, on the cluster at `address`). An
-    episode whose worker crashed raises PyramidSimError naming it, after those before it."""
+    runner on `workers` processes (importing the modules `warm` names before their first) or
+    Ray tasks (`backend`, on the cluster at `address`). An episode whose worker crashed raises
+    PyramidSimError naming it, after those before it."""
     todo = list(episodes)
     if backend != "ray" and workers <= 1:
         for episode in todo:
@@ -102,7 +104,7 @@ def staged(
         workers=workers,
         backend=backend,
         address=address,
-        warm=("pyramid_sim.learning.env",),
+        warm=warm,
     )
     done: dict[int, Any] = {}
     try:

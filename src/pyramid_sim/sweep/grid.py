@@ -15,7 +15,7 @@ from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
-from ..params import PARAMS, check_range, param, parse_number, parse_whole
+from ..params import PARAMS, REPEATS, SWEEP_WORKERS, check_range, param, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT
 
 MAX_POINTS_PER_AXIS = 50
@@ -127,8 +127,8 @@ class SweepConfig:
         SimConfig(robot=self.robot, schedule=self.schedule)  # unknown: one line naming those known
         if self.arms not in ARM_CHOICES:
             raise ConfigError(f"arms: unknown {self.arms!r}; accepted {', '.join(ARM_CHOICES)}")
-        check_range("repeats", self.repeats, 1, 100)
-        check_range("workers", self.workers, 1, 256)
+        REPEATS.check_whole(self.repeats)
+        SWEEP_WORKERS.check_whole(self.workers)
         check_range("timeout (s)", self.timeout, 0.0, 86400.0, low_open=True)
         replace(SimConfig().layout, spawn_jitter_mm=self.spawn_jitter_mm)  # range check
         check_backend(self.backend, self.ray_address)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable
+from contextlib import closing
 from dataclasses import dataclass
 from typing import Any
 
@@ -83,5 +84,8 @@ def run_builds(
         address=address,
         warm=("pyramid_sim.jobs.build",),  # MuJoCo and mink imported before the clock starts
     )
-    for end in ends:
-        on_result(end.value if end.failure is None else failed(end.job, end.failure, end.wall_s))
+    with closing(ends):  # a failing callback, or an interrupt, stops every worker at once
+        for end in ends:
+            on_result(
+                end.value if end.failure is None else failed(end.job, end.failure, end.wall_s)
+            )
