@@ -1,4 +1,4 @@
-"""Feasibility of the SO-101 preset (issue 35), measured before building it.
+"""Feasibility of an SO-101 pair preset, measured before building it.
 
 One vendored SO-101 picks a 45 x 20 x 14.5 mm, 15 g brick top-down by friction alone and
 places it 12 cm away turned 0.5 rad, driven by mink's IK on its 5 arm joints. The jaws' mesh
