@@ -62,8 +62,9 @@ def test_the_pads_close_to_the_width_the_preset_says(name):
     arm = robot.arms["left"]
     widths = []
     for travel in (0.0, robot.finger_stroke):
-        for q, sign in zip(handles.finger_qpos["left"], robot.finger_signs):
-            data.qpos[q] = sign * travel
+        fingers = handles.finger_qpos["left"]
+        for q, gain in zip(fingers, robot.finger_gains):
+            data.qpos[q] = 2 * travel / (len(fingers) * gain)  # the gap opened 2 x travel
         mujoco.mj_forward(model, data)
         pads = [model.geom(p).id for p in arm.pads]
         gap = np.zeros(6)
