@@ -19,7 +19,7 @@ KP = 50.0  # N m/rad: the stall torque at 3.4 degrees of error (chosen; sag in t
 DAMPING = 0.6  # N m s/rad, the vendored model's own
 HOME = (0.0, -0.3, 0.6, 1.2, 0.0)  # rad: the hand down in front of the arm
 BASES = {"left": (0.40, 0.16, 0.0), "right": (0.40, -0.16, 0.0)}  # on the table top
-JAW_LEVER = 0.0728  # m of tip gap a radian of the jaw, near parallel (measured)
+JAW_LEVER = 0.0645  # m of gap between the pads a radian of the jaw (measured: 64.3-64.8)
 JAW_RANGE = (-0.17453, 1.74533)  # rad, the real jaw's (the model's): lerobot's 0 to 100
 GUARDED = ("upper_arm", "lower_arm", "wrist", "gripper", "moving_jaw_so101_v1")
 # The hand's yaw each arm's grasps lean to, of the two that fit a brick, and its clear pose's:
@@ -59,7 +59,7 @@ SO101 = RobotDescription(
     arms={"left": _arm("left"), "right": _arm("right")},
     finger_stroke=0.006,  # the jaw opens the gap 12 mm past parallel: a brick and 3 mm a side
     finger_gains=(JAW_LEVER,),
-    closed_width=0.0155,  # m between the tips' inner faces with the jaw at 0: parallel
+    closed_width=0.0159,  # m between the pads with the jaw at 0, where they are parallel
     open_margin=0.0005,
     grasp_height=0.003,  # the pads' lower ends above the table under a bottom brick
     clear_pose=(0.55, 0.30, 0.07),  # ahead of its base: a brick carried there passes clear of it
