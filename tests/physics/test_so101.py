@@ -58,6 +58,11 @@ def test_its_scale_reaches_the_compiled_model():
     hulls = [g for g in range(model.ngeom) if model.geom_bodyid[g] == jaw.bodyid[0]]
     colliding = [model.geom(g).name for g in hulls if model.geom_contype[g]]
     assert colliding == ["left/moving_pad"]  # the jaw's mesh hull fills the gap: off
+    panda = build_scene(SimConfig(), 2).model  # the scene's cameras, framed for DE NIRO's
+    work = np.array([0.55, 0.0, 0.1])
+    for camera in ("overview", "front", "top"):
+        near, far = model.camera(camera).pos - work, panda.camera(camera).pos - work
+        np.testing.assert_allclose(near, 0.35 * far, atol=1e-9)  # a third as far from the work
 
 
 def test_without_its_aim_past_the_sag_the_arm_stops_short_of_a_target():
@@ -114,3 +119,16 @@ def test_a_recording_names_and_scales_its_features_as_lerobots_bimanual_so_follo
     percent = (jaw + 0.17453) / (1.74533 + 0.17453) * 100  # over the real jaw's range
     assert state[0][5] == pytest.approx(percent, abs=1e-3)
     assert 0.0 < state[:, 5].min() and state[:, 5].max() < 100.0
+
+
+def test_the_expert_builds_a_drawn_layout_at_the_pairs_scale():
+    """The feeder keeps clear of the structure at the robot's scale: at DE NIRO's 2 cm it set
+    no brick beside this layout's turned structure, and the episode stalled at 2 of 6."""
+    env = BuildEnv("pyramid", layers=3, robot="so101", variation="layout")
+    env.reset(seed=100001)
+    for _ in range(10_000):
+        *_, terminated, truncated, info = env.step(env.expert_action())
+        if terminated or truncated:
+            break
+    env.close()
+    assert info["is_success"] and info["bricks_placed"] == 6

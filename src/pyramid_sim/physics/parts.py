@@ -118,8 +118,8 @@ def make_parts(plan: Plan, config: SimConfig, model: mujoco.MjModel | None = Non
         config.robot_description,
         handles,
         plan.spawn,
-        clearance=SPOT_CLEARANCE,
-        arm_clearance=SPOT_ARM_CLEARANCE,
+        clearance=SPOT_CLEARANCE * config.robot_description.length_scale,  # at its scale
+        arm_clearance=SPOT_ARM_CLEARANCE * config.robot_description.length_scale,
         jitter=config.layout.spawn_jitter_mm / 1000.0,
         seed=config.seed,
     )

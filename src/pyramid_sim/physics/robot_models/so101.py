@@ -10,7 +10,7 @@ What is changed from the vendored model, and why (docs/so101_groundwork.md measu
   force-limited servo on a tendon across the jaw (common.py), the jaw's travel a subset of its
   real range;
 - a tool point between the pads, where a held brick's centre is, and a wrist camera on the
-  hand.
+  hand; the scene's cameras a third as far from the work.
 """
 
 from __future__ import annotations
@@ -96,8 +96,17 @@ def _add_tool(hand: mujoco.MjsBody, arm: ArmDescription, at: list[float]) -> Non
     )
 
 
+# The scene's cameras frame DE NIRO's workspace; this pair's is about a third of its size, so
+# each moves along its own line of sight to a third of its distance from the work.
+WORK, CLOSER = np.array([0.55, 0.0, 0.1]), 0.35
+
+
 def add_so101_pair(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) -> None:
-    """Both SO-101s into the scene, each standing on the table at its base."""
+    """Both SO-101s into the scene, each standing on the table at its base, and the scene's
+    cameras brought closer to their work."""
     for name, arm in robot.arms.items():
         frame = spec.worldbody.add_frame(pos=list(arm.base))
         spec.attach(arm_spec(arm, robot, config), prefix=f"{name}/", frame=frame)
+    for camera in ("overview", "front", "top"):
+        cam = spec.camera(camera)
+        cam.pos = WORK + CLOSER * (np.array(cam.pos) - WORK)
