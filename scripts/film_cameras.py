@@ -3,8 +3,9 @@
 
     python3 scripts/film_cameras.py [--out docs/cameras]
 
-Writes panda_overview.png, panda_front.png, panda_top.png and baxter_overview.png (640x480),
-each from its own build (a build films one camera); and each robot's wrist cameras as the
+Writes panda_overview.png, panda_front.png, panda_top.png, baxter_overview.png and
+so101_overview.png (640x480), each from its own build (a build films one camera; the SO-101
+pair's three-layer even pyramid, its largest); and each robot's wrist cameras as the
 environment films them, at the moment each hand first closes on a brick
 (<robot>_left_wrist.png, <robot>_right_wrist.png, 320x240).
 """
@@ -19,7 +20,14 @@ import imageio.v3 as iio
 
 import pyramid_sim
 
-SHOTS = (("panda", "overview"), ("panda", "front"), ("panda", "top"), ("baxter", "overview"))
+SHOTS = (
+    ("panda", "overview"),
+    ("panda", "front"),
+    ("panda", "top"),
+    ("baxter", "overview"),
+    ("so101", "overview"),
+)
+LAYERS = {"so101": 3}  # each robot's pyramid-even: two layers, or its own largest
 
 
 def main() -> None:
@@ -32,13 +40,13 @@ def main() -> None:
         path = out / f"{robot}_{camera}.png"
         result = pyramid_sim.build(
             "pyramid-even",
-            layers=2,
+            layers=LAYERS.get(robot, 2),
             robot=robot,
             snapshot=path,
             video_config=pyramid_sim.VideoConfig(camera=camera),
         )
         print(f"{path}: {result.bricks_placed}/{result.bricks_total} bricks in place")
-    for robot in ("panda", "baxter"):
+    for robot in ("panda", "baxter", "so101"):
         film_wrists(robot, out)
 
 

@@ -8,7 +8,7 @@ from typing import Literal, get_args
 Arm = Literal["left", "right"]
 ArmChoice = Literal["both", "left", "right"]  # who builds: both arms (split) or one alone
 Schedule = Literal["lockstep", "overlap"]
-RobotName = Literal["panda", "baxter"]
+RobotName = Literal["panda", "baxter", "so101"]
 Camera = Literal["overview", "front", "top"]
 Backend = Literal["process", "ray"]  # where a sweep's builds or a recording's episodes run
 

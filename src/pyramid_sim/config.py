@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import Any
 
 from .choices import CAMERAS, SCHEDULES, Camera, RobotName, Schedule
 from .errors import ConfigError
@@ -47,9 +48,9 @@ class BrickConfig:
     friction: float = default("brick", "friction")  # of the brick geoms
 
     def __post_init__(self) -> None:
-        check_range("brick length", self.length, 0.05, 0.5, low_open=True)
-        check_range("brick width", self.width, 0.02, 0.095)
-        check_range("brick height", self.height, 0.02, 0.2)
+        check_range("brick length", self.length, 0.02, 0.5, low_open=True)
+        check_range("brick width", self.width, 0.01, 0.095)
+        check_range("brick height", self.height, 0.01, 0.2)
         check_section("brick", self)
 
     @property
@@ -92,6 +93,8 @@ class LayoutConfig:
     # (rad) about its footprint's centre. The learning variation draws these per episode.
     structure_shift: tuple[float, float] = (0.0, 0.0)
     structure_turn: float = 0.0
+    brick_gap: float = 0.03  # m between neighbouring bricks across the face (DE NIRO's)
+    structure_gap: float = 0.05  # m from the spot's brick to the structure (DE NIRO's)
 
     def __post_init__(self) -> None:
         check_range("table top z", self.table_top_z, 0.0, 0.3)
@@ -102,6 +105,8 @@ class LayoutConfig:
         check_range("spawn yaw", self.spawn_yaw, -math.pi, math.pi)
         check_range("spawn x", self.spawn_xy[0], 0.3, 0.8)
         check_range("spawn y", self.spawn_xy[1], -0.4, 0.4)
+        check_range("brick gap", self.brick_gap, 0.0, 0.1)
+        check_range("structure gap", self.structure_gap, 0.0, 0.2)
 
 
 @dataclass(frozen=True)
@@ -174,6 +179,20 @@ class SimConfig:
                 f"control dt: {self.motion.control_dt} is not a whole number of timesteps "
                 f"({self.timestep})"
             )
+
+    @classmethod
+    def for_robot(cls, name: str, **fields: Any) -> SimConfig:
+        """The settings of robot preset `name` at its own scale: its brick, table, spawn
+        spot, distances and grip (`scale` in robots/), with `fields` over them."""
+        preset = robot(name)
+        sections = {
+            "brick": BrickConfig,
+            "gripper": GripperConfig,
+            "layout": LayoutConfig,
+            "motion": MotionConfig,
+        }
+        scaled = {k: sections[k](**preset.scale[k]) for k in sections if k in preset.scale}
+        return cls(robot=name, **{**scaled, **fields})  # type: ignore[arg-type]
 
     @cached_property
     def hand_motion(self) -> MotionConfig:

@@ -16,10 +16,12 @@ RUN_SETTINGS = ("spawn_jitter_mm", "seed", "robot", "schedule")
 
 
 def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
-    """`config` (default SimConfig()) with the named settings applied; ConfigError for a name
-    that is not a setting, listing those that are."""
+    """`config` (default: the robot's settings at its scale, SimConfig.for_robot) with the
+    named settings applied; ConfigError for a name that is not a setting, listing those that
+    are."""
     _refuse_unknown(values, ())
-    config = config or SimConfig()
+    if config is None:
+        config = SimConfig.for_robot(values.get("robot", SimConfig().robot))
     for name, value in values.items():
         if name in BY_NAME:
             config = BY_NAME[name].apply(config, value)

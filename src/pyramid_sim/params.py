@@ -42,7 +42,10 @@ class Param:
     @property
     def help(self) -> str:
         unit = f" {self.unit}" if self.unit else ""
-        return f"{self.sets}; accepted {self.range_text}{unit} (default {self.default:g})"
+        return (
+            f"{self.sets}; accepted {self.range_text}{unit} (default {self.default:g}, or the "
+            "robot's own at its scale)"
+        )
 
     def check(self, value: Any) -> None:
         """ConfigError naming the parameter and its range unless `value` is accepted."""

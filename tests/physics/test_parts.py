@@ -59,7 +59,8 @@ def test_custody_alone_feeds_the_spot_from_the_magazine_in_order(scene):
     assert spawner.current == 0  # the loop feeds the spot again only once it is picked
     assert custody.needs_brick()  # one brick on the spot, two to pick
     assert np.allclose(
-        data.qpos[handles.brick_qpos[1] : handles.brick_qpos[1] + 3], park_position(1)
+        data.qpos[handles.brick_qpos[1] : handles.brick_qpos[1] + 3],
+        park_position(1, CONFIG.brick.height),
     )  # the next still waits in the magazine
 
 
@@ -119,7 +120,7 @@ def test_the_readout_alone_reports_the_state_it_is_given():
     got = measurements(parts, physics_steps=0, ik_solves=0, failure="stopped by hand", wall=0.5)
     assert got.failure == "stopped by hand" and got.physics_steps == 0 and got.sim_time == 0.0
     assert got.final_pos.shape == (BRICKS, 3)
-    assert np.allclose(got.final_pos[2], park_position(2))  # nothing has moved
+    assert np.allclose(got.final_pos[2], park_position(2, CONFIG.brick.height))  # nothing has moved
     assert got.zone_violations == 0 and got.drops == () and got.slip_mm == {}
     assert set(got.contact_friction) == {"brick_brick", "brick_table", "pad_brick"}
 

@@ -32,7 +32,7 @@ def _robot_contacts(model: mujoco.MjModel, data: mujoco.MjData) -> list[tuple[st
 
 def _scene(name: str, bricks: int):
     """A preset's compiled scene, fresh data and handles."""
-    config = SimConfig(robot=name)
+    config = SimConfig.for_robot(name)  # the robot at its own scale
     model = build_scene(config, bricks).model
     return (
         config,
@@ -62,15 +62,16 @@ def test_the_pads_close_to_the_width_the_preset_says(name):
     arm = robot.arms["left"]
     widths = []
     for travel in (0.0, robot.finger_stroke):
-        for q, sign in zip(handles.finger_qpos["left"], robot.finger_signs):
-            data.qpos[q] = sign * travel
+        fingers = handles.finger_qpos["left"]
+        for q, gain in zip(fingers, robot.finger_gains):
+            data.qpos[q] = 2 * travel / (len(fingers) * gain)  # the gap opened 2 x travel
         mujoco.mj_forward(model, data)
         pads = [model.geom(p).id for p in arm.pads]
         gap = np.zeros(6)
         widths.append(mujoco.mj_geomDistance(model, data, pads[0], pads[1], 1.0, gap))
     assert widths[0] == pytest.approx(robot.closed_width, abs=2e-4)
     assert widths[1] == pytest.approx(robot.closed_width + 2 * robot.finger_stroke, abs=2e-4)
-    assert widths[1] > SimConfig().brick.width > widths[0]
+    assert widths[1] > SimConfig.for_robot(name).brick.width > widths[0]
 
 
 @pytest.mark.parametrize("name", ROBOTS)

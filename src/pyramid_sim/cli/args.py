@@ -172,7 +172,7 @@ def add_physics_args(
             dest=param.name,
             type=number(param.label),
             metavar=param.unit.upper() or "MU",
-            default=param.default,
+            default=None,  # the robot's own at its scale (SimConfig.for_robot)
             help=param.help,
         )
     p.add_argument(
@@ -249,15 +249,16 @@ def config_from_args(args: argparse.Namespace) -> SimConfig:
     """The run's settings; ConfigError if a value is out of range."""
     from dataclasses import replace
 
-    config = SimConfig()
+    config = SimConfig.for_robot(args.robot)  # its scale: brick, table, spot, grip
     for param in PARAMS:
-        config = param.apply(config, getattr(args, param.name))
+        value = getattr(args, param.name)
+        if value is not None:
+            config = param.apply(config, value)
     layout = replace(config.layout, spawn_jitter_mm=args.spawn_jitter)
     return replace(
         config,
         layout=layout,
         seed=args.seed,
-        robot=args.robot,
         schedule=getattr(args, "schedule", SCHEDULES[0]),
     )
 

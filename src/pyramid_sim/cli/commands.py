@@ -134,7 +134,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from ..physics.reach import prepare
     from ..sweep.run import report, run_sweep
 
-    prepare(config.structure, SimConfig(robot=config.robot), config.arms)  # out of reach: refused
+    prepare(
+        config.structure, SimConfig.for_robot(config.robot), config.arms
+    )  # out of reach: refused
     runs = len(config.runs())
     with (
         removed_if_failed([args.out]),
@@ -192,7 +194,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
     from ..physics.reach import ReachChecker, held_fixed
 
     arm_sets: tuple[ArmChoice, ...] = ARM_CHOICES if args.arms == "all" else (args.arms,)
-    checker = ReachChecker(SimConfig(robot=args.robot))
+    checker = ReachChecker(SimConfig.for_robot(args.robot))
     arm_heads = [f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets]
     layout_head = ["both arms, any layout"] if "both" in arm_sets else []
     rows = [["structure", "grows", "other options", *arm_heads, *layout_head]]

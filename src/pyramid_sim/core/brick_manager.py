@@ -6,17 +6,19 @@ import math
 
 from ..config import BrickConfig, check_count
 from .poses import Pose
-from .seed_pyramids import SEED_GAP, SEED_START, SEED_X_GAP, BrickTarget, check_layers
+from .seed_pyramids import SEED_GAPS, SEED_START, BrickTarget, Gaps, check_layers
 
 MAX_COURSE = 12  # bricks a course, towers side by side
 MAX_BRICKS = 200
 SEED_WALL_TOLERANCE = 0.02  # the Brick Manager's `tol`: gap between bricks end to end
 
 
-def _wall_line(start: tuple[float, float, float], brick: BrickConfig) -> tuple[float, float]:
+def _wall_line(
+    start: tuple[float, float, float], brick: BrickConfig, gaps: Gaps
+) -> tuple[float, float]:
     """x of the wall's centre line and the z of its bottom course: the pyramids' line."""
     xs, _, zs = start
-    return xs + brick.length + SEED_X_GAP, zs
+    return xs + brick.length + gaps[1], zs
 
 
 def wall(
@@ -24,6 +26,7 @@ def wall(
     width: int = 4,
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
+    gaps: Gaps = SEED_GAPS,
 ) -> tuple[BrickTarget, ...]:
     """The Brick Manager's `goal_manager_server2` wall: `bricks` bricks in courses along y, `width`
     stretchers (yaw pi/2) a course, `tol` apart; every second course is offset by half a brick
@@ -33,7 +36,7 @@ def wall(
     course may be partial."""
     check_count("wall width", width, 1, MAX_COURSE)
     check_count("bricks", bricks, 1, MAX_BRICKS)
-    x, z0 = _wall_line(start, brick)
+    x, z0 = _wall_line(start, brick, gaps)
     pitch = brick.length + SEED_WALL_TOLERANCE
     y0 = start[1] - (width - 1) * pitch / 2  # centred on the spawn spot's y, as the pyramids
     shift2 = (brick.length - brick.width) / 2
@@ -58,13 +61,14 @@ def wall_pyramid(
     layers: int = 3,
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
+    gaps: Gaps = SEED_GAPS,
 ) -> tuple[BrickTarget, ...]:
     """The Brick Manager's `goal_manager_server3`: stretchers end to end along y (yaw pi/2),
     `width` in the bottom course, each course above one shorter and shifted by half a brick,
     `layers` courses (at most `width`)."""
     check_count("wall width", width, 1, MAX_COURSE)
     check_count("layers", layers, 1, width)  # a course of `width` carries at most `width`
-    x, z0 = _wall_line(start, brick)
+    x, z0 = _wall_line(start, brick, gaps)
     pitch = brick.length + SEED_WALL_TOLERANCE
     y0 = start[1] - (width - 1) * pitch / 2
     return tuple(
@@ -81,6 +85,7 @@ def towers(
     layers: int = 3,
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
+    gaps: Gaps = SEED_GAPS,
     pickup_y: float | None = None,
 ) -> tuple[BrickTarget, ...]:
     """The Brick Manager's `generate_simple_wall` helper: `towers` columns of `layers` bricks
@@ -88,8 +93,8 @@ def towers(
     pick-up spot (as there: pick-up at y >= 0, first tower at negative y). Tower by tower."""
     check_count("towers", towers, 1, MAX_COURSE)
     check_layers(layers)
-    x, z0 = _wall_line(start, brick)
-    pitch = brick.width + SEED_GAP
+    x, z0 = _wall_line(start, brick, gaps)
+    pitch = brick.width + gaps[0]
     pickup = start[1] if pickup_y is None else pickup_y
     direction = 1.0 if pickup >= start[1] else -1.0
     first = start[1] - direction * (towers - 1) * pitch / 2

@@ -92,7 +92,8 @@ def make_plan(spec: StructureSpec, config: SimConfig, arms: ArmChoice = "both") 
     # With one arm the structure stands in front of it (the Brick Manager's single Panda built
     # before itself); with two, centred on the spawn spot between them, as DE NIRO's.
     centre_y = spawn.y if arms == "both" else config.robot_description.arms[arms].base[1]
-    targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y)
+    gaps = (layout.brick_gap, layout.structure_gap)
+    targets = spec.targets(config.brick, (spawn.x, centre_y, spawn.z), pickup_y=spawn.y, gaps=gaps)
     targets = moved(targets, layout.structure_shift, layout.structure_turn)
     order = arrange(targets) if arms == "both" else single_arm(targets, arms)
     return Plan(spec, arms, spawn, order)

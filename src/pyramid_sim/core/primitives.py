@@ -8,6 +8,7 @@ clear = move to the arm's outer collision-clear pose.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
@@ -53,8 +54,11 @@ def pick_steps(
     yaw_ref: float = YAW_REFERENCE,
     then_yaw: float | None = None,
     quick_lift: bool = False,
+    clearance: float = 0.0,
 ) -> list[Step]:
-    """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre.
+    """Steps that pick the brick resting at `brick`, gripping `grasp_height` above its centre
+    (`clearance` off it towards the hand's fixed jaw, tool -y, for a one-jaw hand: the moving
+    jaw then closes the brick onto the fixed one).
 
     With `carry_to` (the resting pose the brick is for) the retract lifts straight up to that
     place's hover height, so the carry over to it is level: a carried brick never cuts down
@@ -62,6 +66,9 @@ def pick_steps(
     hand's yaw on the move after) the retract begins that turn (see `turned_within`); with
     `quick_lift` it lifts at the free speed, its acceleration bounded (`lift_speed`)."""
     grasp = brick.moved(dz=grasp_height).with_yaw(grasp_yaw(brick.yaw, yaw_ref))
+    if clearance:  # the tool's y in the world is (sin yaw, -cos yaw): Rz(yaw) Rx(pi)
+        yaw = grasp.yaw
+        grasp = grasp.moved(dx=-clearance * math.sin(yaw), dy=clearance * math.cos(yaw))
     half = motion.hover / 2
     retract = grasp.moved(dz=half)
     if carry_to is not None:

@@ -74,13 +74,20 @@ def check_layers(layers: int) -> None:
     check_count("layers", layers, 1, MAX_LAYERS)
 
 
+Gaps = tuple[float, float]  # m between bricks across the face, and beyond the spot's brick
+SEED_GAPS: Gaps = (SEED_GAP, SEED_X_GAP)
+
+
 def _layout(
-    slots_per_layer: list[list[float]], brick: BrickConfig, start: tuple[float, float, float]
+    slots_per_layer: list[list[float]],
+    brick: BrickConfig,
+    start: tuple[float, float, float],
+    gaps: Gaps,
 ) -> tuple[BrickTarget, ...]:
     """Targets from slot numbers (in brick pitches across the face), bottom layer first."""
     xs, ys, zs = start
-    x = xs + brick.length + SEED_X_GAP
-    pitch = brick.width + SEED_GAP
+    x = xs + brick.length + gaps[1]
+    pitch = brick.width + gaps[0]
     return tuple(
         BrickTarget(Pose(x, ys + slot * pitch, zs + layer * brick.height, 0.0), layer)
         for layer, slots in enumerate(slots_per_layer)
@@ -92,20 +99,22 @@ def pyramid(
     layers: int = 4,
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
+    gaps: Gaps = SEED_GAPS,
 ) -> tuple[BrickTarget, ...]:
     """DE NIRO's `create_coordinates` pyramid: n, n-1, ..., 1 bricks, each layer offset by half
     a pitch from the one below, long axes pointing away from the robots (yaw 0)."""
     check_layers(layers)
     slots = [[k - (n - 1) / 2 for k in range(n)] for n in range(layers, 0, -1)]
-    return _layout(slots, brick, start)
+    return _layout(slots, brick, start, gaps)
 
 
 def pyramid_even(
     layers: int = 4,
     brick: BrickConfig = BrickConfig(),
     start: tuple[float, float, float] = SEED_START,
+    gaps: Gaps = SEED_GAPS,
 ) -> tuple[BrickTarget, ...]:
     """DE NIRO's `create_coordinates_new` pyramid: 2n, 2n-2, ..., 2 bricks in columns."""
     check_layers(layers)
     slots = [[k - (n - 1) / 2 for k in range(n)] for n in range(2 * layers, 0, -2)]
-    return _layout(slots, brick, start)
+    return _layout(slots, brick, start, gaps)

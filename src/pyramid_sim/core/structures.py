@@ -10,7 +10,15 @@ from ..config import BrickConfig
 from ..errors import ConfigError
 from .brick_manager import MAX_BRICKS, MAX_COURSE, towers, wall, wall_pyramid
 from .corner_wall import corner_wall
-from .seed_pyramids import MAX_LAYERS, SEED_START, BrickTarget, pyramid, pyramid_even
+from .seed_pyramids import (
+    MAX_LAYERS,
+    SEED_GAPS,
+    SEED_START,
+    BrickTarget,
+    Gaps,
+    pyramid,
+    pyramid_even,
+)
 
 __all__ = [
     "MAX_BRICKS",
@@ -108,9 +116,11 @@ class StructureSpec:
         brick: BrickConfig,
         start: tuple[float, float, float],
         pickup_y: float | None = None,
+        gaps: Gaps = SEED_GAPS,
     ) -> tuple[BrickTarget, ...]:
         """The resting targets, laid out from `start` (the spawn spot's x and z, the
-        structure's centre y); goals are absolute and ignore it."""
+        structure's centre y) with `gaps` between bricks and beyond the spot (the corner wall
+        keeps the Brick Manager's own); goals are absolute and ignore both."""
         generator, defaults = STRUCTURES[self.name]
         if generator is None:
             assert self.goals is not None
@@ -118,4 +128,6 @@ class StructureSpec:
         options: dict = {o: getattr(self, o) for o in defaults}
         if self.name in PLACED_BY_PICKUP:
             options["pickup_y"] = start[1] if pickup_y is None else pickup_y
+        if self.name != "corner-wall":
+            options["gaps"] = gaps
         return generator(**options, brick=brick, start=start)

@@ -37,6 +37,7 @@ from .command_limits import CommandLimiter, joint_limits, spline_ramp
 from .ee_control import EndEffectorControl
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
+from .lerobot_units import lerobot_units
 from .outcome import PlacementWatch, episode_failure
 from .spaces import checked_action, joint_space, observation_space, renderer
 
@@ -103,6 +104,8 @@ class BuildEnv(gymnasium.Env):
         self.episodes = EpisodeMaker(self.config, spec, arms, self.variation, self.randomize)
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
+        # the state and joint command as lerobot records this robot
+        self.lerobot_units = lerobot_units(robot, self.layout.names)
         motion = self.config.hand_motion
         floor = self.config.layout.table_top_z + self.config.brick.height / 2 + robot.grasp_height
         self.ee = EndEffectorControl(

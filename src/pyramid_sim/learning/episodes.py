@@ -90,7 +90,7 @@ def check_spot_clear(plan: Plan, config: SimConfig) -> None:
     spawn spot's brick: the feeder sets no brick beside one that near, and the build stalls."""
     brick, jitter = config.brick, config.layout.spawn_jitter_mm / 1000.0
     spot = footprint(plan.spawn, brick.length + 2 * jitter, brick.width + 2 * jitter)
-    need = SPOT_CLEARANCE + var.SPOT_MARGIN
+    need = (SPOT_CLEARANCE + var.SPOT_MARGIN) * config.robot_description.length_scale
     for b in plan.bricks:
         gap = footprint_gap(spot, footprint(b.target.pose, brick.length, brick.width))
         if gap < need:

@@ -14,6 +14,7 @@ from . import lerobot_format as fmt
 from .env import BuildEnv
 from .episode import Frame, expert_episode
 from .layout import BRICK_FIELDS
+from .lerobot_units import LerobotUnits
 from .record_config import RecordConfig
 from .staging import staging_folder
 
@@ -33,7 +34,7 @@ def make_env(config: RecordConfig) -> BuildEnv:
 
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     """The dataset's per-frame features, from the environment's layout."""
-    names = env.layout.names
+    names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
     height, width = config.image_size
     bricks = tuple(
         f"brick{slot}.{field}" for slot in range(env.layout.bricks) for field in BRICK_FIELDS
@@ -54,11 +55,11 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     return found
 
 
-def _frame_values(frame: Frame, cameras: tuple[str, ...]) -> dict[str, Any]:
+def _frame_values(frame: Frame, cameras: tuple[str, ...], units: LerobotUnits) -> dict[str, Any]:
     values: dict[str, Any] = {
-        "observation.state": frame.state,
+        "observation.state": units.to_lerobot(frame.state),
         "observation.environment_state": frame.environment,
-        "action": frame.action,
+        "action": units.to_lerobot(frame.action),
         "next.reward": frame.reward,
         "next.done": frame.done,
         "next.success": frame.success,
@@ -119,7 +120,7 @@ def film_episode(
 
     def keep(frame: Frame) -> None:
         nonlocal frames
-        files.add(_frame_values(frame, config.cameras))
+        files.add(_frame_values(frame, config.cameras, env.lerobot_units))
         frames += 1
         if on_frame is not None:
             on_frame(files.episode, frames)

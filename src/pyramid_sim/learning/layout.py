@@ -55,14 +55,15 @@ def layout(model: mujoco.MjModel, handles: SceneHandles, robot: RobotDescription
 
 
 def state(data: mujoco.MjData, handles: SceneHandles, out: np.ndarray) -> np.ndarray:
-    """Both arms' joint positions and each hand's finger gap (its two fingers' travel), in
-    the layout's order, written into `out`."""
+    """Both arms' joint positions and each hand's finger gap (its fingers' travel, each by
+    its gain: a jaw's angle times its lever), in the layout's order, written into `out`."""
     k = 0
     for arm in c.ARMS:
         q = handles.arm_qpos[arm]
         out[k : k + len(q)] = data.qpos[q]
         k += len(q)
-        out[k] = sum(abs(data.qpos[f]) for f in handles.finger_qpos[arm])
+        fingers = zip(handles.finger_qpos[arm], handles.finger_gains)
+        out[k] = sum(abs(gain * data.qpos[f]) for f, gain in fingers)
         k += 1
     return out
 

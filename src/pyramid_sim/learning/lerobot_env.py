@@ -15,16 +15,25 @@ from gymnasium import spaces
 from ..choices import LEROBOT_ENV_ID
 from .env import BuildEnv
 from .episode import task_text
+from .lerobot_units import LerobotUnits
 
 __all__ = ["LEROBOT_ENV_ID", "LerobotView", "lerobot_keys", "make_lerobot_env"]
 
 
-class LerobotView(gymnasium.ObservationWrapper):
+class LerobotView(gymnasium.Wrapper):
     """A BuildEnv whose observations carry lerobot's keys, with `task` and
-    `task_description` (the text `record` gives each frame)."""
+    `task_description` (the text `record` gives each frame), its state and joint commands in
+    lerobot's units for the robot, as `record` writes them (learning/lerobot_units.py)."""
 
     def __init__(self, env: BuildEnv) -> None:
         super().__init__(env)
+        self.units = env.lerobot_units
+        self._joints = env.action_mode != "ee"  # ee commands are poses: no motor's units
+        if self._joints:
+            inner_action = env.action_space
+            assert isinstance(inner_action, spaces.Box)
+            ends = self.units.to_lerobot(np.stack([inner_action.low, inner_action.high]))
+            self.action_space = spaces.Box(ends.min(0), ends.max(0), dtype=np.float32)
         inner = env.observation_space
         assert isinstance(inner, spaces.Dict)
         bricks = inner["bricks"].shape
@@ -40,14 +49,22 @@ class LerobotView(gymnasium.ObservationWrapper):
         self.observation_space = spaces.Dict(observed)
         self.task = self.task_description = task_text(env)
 
-    def observation(self, observation: dict[str, Any]) -> dict[str, Any]:
-        return lerobot_keys(observation)
+    def reset(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+        observation, info = self.env.reset(**kwargs)
+        return lerobot_keys(observation, self.units), info
+
+    def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        ours = self.units.from_lerobot(action) if self._joints else action
+        observation, reward, terminated, truncated, info = self.env.step(
+            np.asarray(ours, dtype=np.float32)
+        )
+        return lerobot_keys(observation, self.units), float(reward), terminated, truncated, info
 
 
-def lerobot_keys(observation: dict[str, Any]) -> dict[str, Any]:
-    """A BuildEnv observation under lerobot's keys."""
+def lerobot_keys(observation: dict[str, Any], units: LerobotUnits) -> dict[str, Any]:
+    """A BuildEnv observation under lerobot's keys, its state in lerobot's units."""
     mapped: dict[str, Any] = {
-        "agent_pos": observation["state"].astype(np.float32),
+        "agent_pos": units.to_lerobot(observation["state"]),
         "environment_state": observation["bricks"].astype(np.float32).ravel(),
     }
     if "images" in observation:

@@ -43,6 +43,7 @@ class LerobotPolicy:
         )
         self._to_tensors = preprocess_observation
         self.task = task_text(env.unwrapped)
+        self.units = env.unwrapped.lerobot_units
 
     def reset(self) -> None:
         self.policy.reset()  # an action chunk is not carried into the next episode
@@ -52,13 +53,14 @@ class LerobotPolicy:
 
         batch = {
             k: (np.expand_dims(v, 0) if k != "pixels" else {c: i[None] for c, i in v.items()})
-            for k, v in lerobot_keys(observation).items()
+            for k, v in lerobot_keys(observation, self.units).items()
         }
         tensors = self._to_tensors(batch)
         tensors["task"] = [self.task]
         with torch.inference_mode():
             action = self.post(self.policy.select_action(self.pre(tensors)))
-        return np.asarray(action.to("cpu").numpy()[0], dtype=np.float32)
+        theirs = action.to("cpu").numpy()[0]  # in lerobot's units for the robot, as recorded
+        return np.asarray(self.units.from_lerobot(theirs), dtype=np.float32)
 
 
 def lerobot_missing() -> MachineError:

@@ -128,7 +128,7 @@ class _Landing:
         self.out, self.env, self.config, self.records = out, env, config, records
         self.features = features(env, config)
         self.task = task_text(env)
-        self.robot_type = f"{env.config.robot_description.name}_bimanual"
+        self.robot_type = env.lerobot_units.robot_type
         rows = [r["row"] for r in records.values()]
         self.stats = meta.aggregate(rows) if rows else None
         self.frames_before = _FramesBefore({i: r["row"]["length"] for i, r in records.items()})

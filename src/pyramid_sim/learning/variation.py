@@ -70,20 +70,23 @@ def draw_layout(seed: int, level: str, attempt: int = 0) -> dict[str, Any]:
 
 
 def placed(config: SimConfig, drawn: dict[str, Any]) -> SimConfig:
-    """The settings with a drawn layout applied (the settings themselves for an empty one)."""
+    """The settings with a drawn layout applied (the settings themselves for an empty one),
+    its lengths scaled to the robot's (`length_scale`)."""
     if not drawn:
         return config
     layout = config.layout  # the draw is an offset from the settings' own layout
+    k = config.robot_description.length_scale  # the draw's lengths are at DE NIRO's scale
     x, y = layout.spawn_xy
     dx, dy = drawn["spawn_offset"]
     sx, sy = layout.structure_shift
+    shift = drawn["structure_shift"]
     return replace(
         config,
         layout=replace(
             layout,
-            spawn_xy=(x + dx, y + dy),
+            spawn_xy=(x + k * dx, y + k * dy),
             spawn_yaw=layout.spawn_yaw + drawn["spawn_turn"],
-            structure_shift=(sx + drawn["structure_shift"][0], sy + drawn["structure_shift"][1]),
+            structure_shift=(sx + k * shift[0], sy + k * shift[1]),
             structure_turn=layout.structure_turn + drawn["structure_turn"],
         ),
     )

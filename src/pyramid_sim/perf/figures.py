@@ -239,7 +239,7 @@ def sweep_rate(
 
 def run_all(bench: BenchConfig, progress: Progress = lambda _: None) -> dict[str, Any]:
     """Every figure of the benchmark, in one process."""
-    config = SimConfig(robot=bench.robot)
+    config = SimConfig.for_robot(bench.robot)
     spec = bench.structure
     figures: dict[str, Any] = {
         "structure": structure_label(spec),

@@ -23,7 +23,7 @@ RECORD_FPS = 25
 
 
 def learning_figures(spec: StructureSpec, robot: RobotName) -> dict[str, Any]:
-    config = SimConfig(robot=robot)
+    config = SimConfig.for_robot(robot)
     loop = BuildLoop.of(prepare(spec, config), config)
     start = time.perf_counter()
     built = loop.run()

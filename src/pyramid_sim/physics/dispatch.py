@@ -141,10 +141,14 @@ class ArmDispatch:
                     carry_to=target,
                     then_yaw=then,
                     quick_lift=quick,
+                    clearance=self.config.robot_description.pick_clearance,
                     **grasp,
                 )
             if task.action in (Action.PLACE, Action.BUILD):
-                then = self._yaw_after(arm, task.brick) if quick else None
+                # A one-jaw hand leaves its fixed jaw against the brick it let go: it lifts
+                # clear before it turns (a turn on the way up dragged the brick 3 degrees).
+                one_jaw = self.config.robot_description.pick_clearance > 0
+                then = self._yaw_after(arm, task.brick) if quick and not one_jaw else None
                 steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):
                 assert steps[0].pose is not None  # a pick or a place begins with a move

@@ -36,6 +36,7 @@ class SceneHandles:
         }
         self.gripper = {a: model.actuator(arms[a].gripper_actuator).id for a in c.ARMS}
         self.finger_qpos = {a: list(qpos_addresses(model, arms[a].finger_joints)) for a in c.ARMS}
+        self.finger_gains = robot.finger_gains  # m of gap a unit of each finger's travel
         self.tcp_site = {a: model.site(arms[a].tcp_site).id for a in c.ARMS}
         self.zone_bodies = {a: [model.body(b).id for b in arms[a].zone_bodies] for a in c.ARMS}
         joints = [model.joint(c.brick_name(i) + "joint") for i in range(n_bricks)]

@@ -38,7 +38,7 @@ def arms_model(config: SimConfig) -> mujoco.MjModel:
 
 @lru_cache(maxsize=4)
 def _arms_model(robot: RobotName, timestep: float) -> mujoco.MjModel:
-    spec = build_spec(SimConfig(robot=robot, timestep=timestep), 0, with_bricks=False)
+    spec = build_spec(SimConfig.for_robot(robot, timestep=timestep), 0, with_bricks=False)
     for geom in [g for g in spec.geoms if not (g.contype or g.conaffinity)]:
         spec.delete(geom)  # drawn only: the IK never looks at them, its kinematics skip them
     return spec.compile()

@@ -21,6 +21,7 @@ from .hooks import BuildHooks
 from .ik_rate import IKRate
 from .parts import BuildParts, make_parts
 from .readout import measurements
+from .sag import SagOffset
 from .stops import no_motion_reason, stall_reason, warning_reason
 
 
@@ -43,6 +44,8 @@ class BuildLoop:
         self._command_gap = np.array([joints, 2 * joints + 1])
         self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
         self.placed = self.steps = 0
+        robot = config.robot_description
+        self._sag = None if robot.gravity_compensation else SagOffset(self.ik.model, robot)
         self.ik_rate = IKRate(self.ik, self.dispatch, config)
         self._ik_error = {a: self._error_of(a) for a in c.ARMS}
         self.last_progress = 0.0  # sim time an arm last finished a step
@@ -180,6 +183,8 @@ class BuildLoop:
         order (a view, rewritten each control step)."""
         command = self._command
         command[self._command_q] = self.ik.q[self._ik_q]
+        if self._sag is not None:  # servos that sag: aim past the target by the sag
+            command[self._command_q] += self._sag(self.ik.q[self._ik_q])
         command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
         return command
 

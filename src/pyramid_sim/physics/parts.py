@@ -95,8 +95,9 @@ def start_at_clear_poses(
         data.ctrl[handles.arm_actuators[a]] = start[a]
         opened = robot.open_gap()
         data.ctrl[handles.gripper[a]] = opened
-        for q, sign in zip(handles.finger_qpos[a], robot.finger_signs):
-            data.qpos[q] = sign * opened / 2
+        fingers = handles.finger_qpos[a]
+        for q, gain in zip(fingers, robot.finger_gains):
+            data.qpos[q] = opened / (len(fingers) * gain)  # each its share of the gap
     ik.reset(start["left"], start["right"])
     mujoco.mj_forward(model, data)
 
@@ -117,8 +118,8 @@ def make_parts(plan: Plan, config: SimConfig, model: mujoco.MjModel | None = Non
         config.robot_description,
         handles,
         plan.spawn,
-        clearance=SPOT_CLEARANCE,
-        arm_clearance=SPOT_ARM_CLEARANCE,
+        clearance=SPOT_CLEARANCE * config.robot_description.length_scale,  # at its scale
+        arm_clearance=SPOT_ARM_CLEARANCE * config.robot_description.length_scale,
         jitter=config.layout.spawn_jitter_mm / 1000.0,
         seed=config.seed,
     )

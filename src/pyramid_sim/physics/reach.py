@@ -30,7 +30,12 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
             label += f" (goals row {goals.index(b.target) + 1})"
         grasp, yaw_ref = robot.grasp_height, robot.arms[b.arm].yaw_reference
         for step in pick_steps(
-            plan.spawn, motion, carry_to=b.target.pose, grasp_height=grasp, yaw_ref=yaw_ref
+            plan.spawn,
+            motion,
+            carry_to=b.target.pose,
+            grasp_height=grasp,
+            yaw_ref=yaw_ref,
+            clearance=robot.pick_clearance,
         ):
             if step.pose is not None:
                 poses.append((b.arm, f"{label} pick {step.name}", step.pose))

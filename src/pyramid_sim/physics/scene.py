@@ -20,7 +20,6 @@ from . import names as c
 from .robot_models import add_robot
 
 FLOOR_Z = -0.671  # m: the floor of scene.xml, below the robots' pedestals
-PARK_Z = FLOOR_Z + 0.031  # bricks waiting in the magazine lie on the floor behind the back wall
 # Long axis along x: rows a brick length and 0.108 m apart, columns a width and 0.114 m (rows
 # closer than a brick's length interpenetrate, and MuJoCo throws the bricks across the floor).
 PARK_ROW_PITCH, PARK_COLUMN_PITCH = 0.30, 0.20
@@ -41,10 +40,12 @@ def brick_spec(config: SimConfig) -> mujoco.MjSpec:
     return spec
 
 
-def park_position(slot: int) -> np.ndarray:
-    """Where magazine brick `slot` waits: a grid on the floor behind the robots."""
+def park_position(slot: int, height: float) -> np.ndarray:
+    """Where magazine brick `slot` (`height` tall) waits: lying on the floor behind the back
+    wall, in a grid."""
     row, col = divmod(slot, 8)
-    return np.array([PARK_X - PARK_ROW_PITCH * row, -0.7 + PARK_COLUMN_PITCH * col, PARK_Z])
+    z = FLOOR_Z + height / 2
+    return np.array([PARK_X - PARK_ROW_PITCH * row, -0.7 + PARK_COLUMN_PITCH * col, z])
 
 
 @dataclass(frozen=True)
@@ -92,7 +93,7 @@ def build_spec(config: SimConfig, n_bricks: int, *, with_bricks: bool = True) ->
     if with_bricks:
         _add_contact_sensors(spec, robot)
         for slot in range(n_bricks):
-            frame = spec.worldbody.add_frame(pos=list(park_position(slot)))
+            frame = spec.worldbody.add_frame(pos=list(park_position(slot, config.brick.height)))
             spec.attach(brick_spec(config), prefix=c.brick_name(slot), frame=frame)
     return spec
 

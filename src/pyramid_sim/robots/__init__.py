@@ -7,8 +7,9 @@ from ..errors import ConfigError
 from .baxter import BAXTER
 from .description import ArmDescription, RobotDescription
 from .panda import PANDA
+from .so101 import SO101
 
-PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER}
+PRESETS: dict[str, RobotDescription] = {PANDA.name: PANDA, BAXTER.name: BAXTER, SO101.name: SO101}
 DEFAULT_ROBOT: RobotName = PANDA.name
 
 

@@ -9,8 +9,9 @@ and carries the real robot's limits and dimensions. Pure: no MuJoCo. The physics
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import Any
 
 from ..choices import RobotName
 
@@ -33,8 +34,8 @@ class ArmDescription:
     tcp_site: str  # the tool centre point: z out of the hand, fingers closing along y
     zone_bodies: tuple[str, ...]  # whose positions tell whether the arm is in the shared zone
     guarded_bodies: tuple[str, ...]  # links the IK keeps off the other arm and the robot's body
-    finger_joints: tuple[str, str]
-    finger_bodies: tuple[str, str]
+    finger_joints: tuple[str, ...]  # two sliding fingers, or one jaw against a fixed one
+    finger_bodies: tuple[str, ...]
     pads: tuple[str, str]  # the geoms that touch the brick
     gripper_actuator: str
     yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
@@ -66,8 +67,9 @@ class RobotDescription:
     name: RobotName
     summary: str
     arms: Mapping[str, ArmDescription]  # "left" and "right"
-    finger_stroke: float  # m each finger travels: the real hand's joint range
-    finger_signs: tuple[int, int]  # +1 where a finger's joint opens the hand with rising value
+    finger_stroke: float  # m the gap opens, halved: each finger's travel in a two-finger hand
+    finger_gains: tuple[float, ...]  # m of gap a unit of each finger joint's travel opens:
+    # +1 or -1 for a sliding finger, a hinged jaw's lever (m/rad)
     closed_width: float  # m between the pads with both fingers closed (spacers or slots set it)
     open_margin: float  # m short of its end each open finger stops: a knock then pushes it
     # against its servo, not into its joint stop
@@ -78,9 +80,26 @@ class RobotDescription:
     max_speed: float = float("inf")  # m/s: caps the motion settings' free-move speed,
     max_slow_speed: float = float("inf")  # their servo speed near bricks,
     max_turn_rate: float = float("inf")  # and the hand's turn rate (rad/s)
+    gravity_compensation: bool = True  # the servos hold the arm's weight for free (a Panda's,
+    # Baxter's controllers); where False they hold it within their torque, and sag
+    pick_clearance: float = 0.0  # m the tool point stands off a brick's centre towards the
+    # fixed jaw's side (tool -y) until the grip: a one-jaw hand cannot open that side
+    # As lerobot records this robot (learning/lerobot_units.py): its robot_type, each arm's
+    # motors by lerobot's names (joints in degrees, the gripper 0-100 over the jaw's joint
+    # range `lerobot_gripper_span`, rad). Empty: pyramid_sim's own names and SI units.
+    lerobot_robot_type: str = ""
+    lerobot_motors: tuple[str, ...] = ()
+    lerobot_gripper_span: tuple[float, float] = (0.0, 0.0)
+    length_scale: float = 1.0  # its lengths against DE NIRO's: how far the learning layouts
+    # move the spot and the structure, and how clear of the spot they keep
+    scale: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)  # SimConfig sections
+    # defaults at this robot's scale ({"brick": {"width": ...}, ...}); empty: DE NIRO's
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "arms", MappingProxyType(dict(self.arms)))
+        object.__setattr__(
+            self, "scale", MappingProxyType({k: dict(v) for k, v in self.scale.items()})
+        )
         if set(self.arms) != {"left", "right"}:
             raise ValueError(f"arms: {sorted(self.arms)}; a preset has a left and a right arm")
 

@@ -87,7 +87,8 @@ class SweepRun:
     schedule: Schedule = SCHEDULES[0]
 
     def config(self, base: SimConfig | None = None) -> SimConfig:
-        config = replace(base or SimConfig(), robot=self.robot, schedule=self.schedule)
+        start = base or SimConfig.for_robot(self.robot)  # the robot's scale
+        config = replace(start, robot=self.robot, schedule=self.schedule)
         for name, value in self.params:
             config = param(name).apply(config, value)
         layout = replace(config.layout, spawn_jitter_mm=self.spawn_jitter_mm)

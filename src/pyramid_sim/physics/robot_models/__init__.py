@@ -11,9 +11,14 @@ from ...config import SimConfig
 from ...robots import RobotDescription
 from .baxter import add_baxter
 from .panda import add_panda_pair
+from .so101 import add_so101_pair
 
 Builder = Callable[[mujoco.MjSpec, SimConfig, RobotDescription], None]
-BUILDERS: dict[str, Builder] = {"panda": add_panda_pair, "baxter": add_baxter}
+BUILDERS: dict[str, Builder] = {
+    "panda": add_panda_pair,
+    "baxter": add_baxter,
+    "so101": add_so101_pair,
+}
 
 
 def add_robot(spec: mujoco.MjSpec, config: SimConfig) -> RobotDescription:

@@ -76,13 +76,21 @@ def local(name: str) -> str:
     return name.split("/", 1)[-1]
 
 
-def add_servos(spec: mujoco.MjSpec, arm: ArmDescription, armature: float) -> None:
+def add_servos(
+    spec: mujoco.MjSpec,
+    arm: ArmDescription,
+    armature: float | None,
+    gravity_compensation: bool = True,
+) -> None:
     """A position servo per arm joint, named as the joint, with the arm's gains and torque
-    limits; gravity compensation is the servo's work (actuatorgravcomp), so it counts against
-    the same limit instead of being a free torque."""
+    limits (the joints' armature set, or the model's own kept if None). With
+    `gravity_compensation` the servo cancels the arm's weight (actuatorgravcomp), which counts
+    against the same limit instead of being a free torque; without, it holds the weight by
+    its position error, as a hobby servo does, and sags."""
     for joint_name, kp, damping, torque in zip(arm.joints, arm.kp, arm.damping, arm.torque_limits):
         joint = spec.joint(local(joint_name))
-        joint.armature = armature
+        if armature is not None:
+            joint.armature = armature
         joint.damping = [damping, 0.0, 0.0]
         act = spec.add_actuator(
             name=local(joint_name), target=local(joint_name), trntype=mujoco.mjtTrn.mjTRN_JOINT
@@ -92,7 +100,7 @@ def add_servos(spec: mujoco.MjSpec, arm: ArmDescription, armature: float) -> Non
         act.ctrllimited = True
         act.forcerange = [-torque, torque]
         act.forcelimited = True
-        joint.actgravcomp = True
+        joint.actgravcomp = gravity_compensation
         joint.actfrcrange = [-torque, torque]
         joint.actfrclimited = True
 
@@ -116,8 +124,8 @@ def add_gripper_servo(
     the closed width), force-limited to the grip force, stiff enough that any command short of
     the brick saturates at that limit."""
     tendon = spec.add_tendon(name=local(arm.gripper_actuator) + "_gap")
-    for joint_name, sign in zip(arm.finger_joints, robot.finger_signs):
-        tendon.wrap_joint(local(joint_name), float(sign))
+    for joint_name, gain in zip(arm.finger_joints, robot.finger_gains):
+        tendon.wrap_joint(local(joint_name), float(gain))
     act = spec.add_actuator(
         name=local(arm.gripper_actuator),
         target=local(arm.gripper_actuator) + "_gap",
