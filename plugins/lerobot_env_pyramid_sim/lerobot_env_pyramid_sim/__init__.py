@@ -16,6 +16,7 @@ from lerobot.envs.configs import EnvConfig
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 import pyramid_sim
+from pyramid_sim.robots import robot
 
 SPARE_BRICKS = pyramid_sim.SimConfig().spare_bricks  # in the magazine beside the structure's
 
@@ -40,9 +41,11 @@ class PyramidSimEnv(EnvConfig):
 
     def __post_init__(self) -> None:
         bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
+        # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
+        motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
         self.features = {
-            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(16,)),
-            "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(16,)),
+            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(motors,)),
+            "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),
             "environment_state": PolicyFeature(
                 type=FeatureType.ENV, shape=((bricks + SPARE_BRICKS) * 7,)
             ),
