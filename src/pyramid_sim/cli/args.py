@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from ..choices import ARM_CHOICES, BACKENDS, FPS_CHOICES, SCHEDULES
+from ..choices import ARM_CHOICES, BACKENDS, SCHEDULES
 from ..config import SPAWN_JITTER_MM, SimConfig
 from ..core.structures import (
     MAX_BRICKS,
@@ -21,7 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
-from ..params import EPISODES, PARAMS, parse_number, parse_whole
+from ..params import PARAMS, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT, PRESETS
 from .paths import path_problem
 
@@ -184,33 +184,6 @@ def add_physics_args(
         f"{SPAWN_JITTER_MM.text} (default 0)",
     )
     p.add_argument("--seed", type=whole("seed"), default=seed_default, help=seed_help)
-
-
-def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> None:
-    """--episodes, --variation and --fps, as record and evaluate share them."""
-    from ..choices import DEFAULT_VARIATION, VARIATIONS
-
-    p.add_argument(
-        "--episodes",
-        type=whole("episodes", EPISODES.whole_text),
-        default=episodes,
-        help=f"{what}, seeds --seed, --seed + 1, ... (default {episodes})",
-    )
-    p.add_argument(
-        "--variation",
-        default=DEFAULT_VARIATION,
-        choices=VARIATIONS,
-        help="how episodes differ: fixed (DE NIRO's layout), layout (the feed spot, the "
-        "structure's place and turn drawn per episode) or full (the layout and every "
-        f"randomization) (default {DEFAULT_VARIATION})",
-    )
-    p.add_argument(
-        "--fps",
-        type=whole("fps", ", ".join(map(str, FPS_CHOICES))),
-        default=25,
-        help="the environment's step rate, a dataset's frames a second (of the 100 Hz "
-        "control): 10, 20, 25, 50 or 100 (default 25)",
-    )
 
 
 def add_backend_args(p: argparse.ArgumentParser, what: str) -> None:

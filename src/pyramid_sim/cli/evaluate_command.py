@@ -4,21 +4,19 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
 
 from ..choices import EVAL_FIRST_SEED
-from ..errors import ConfigError
-from ..output.files import check_writable_dir, removed_if_failed
+from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import MAX_STEPS
 from .args import (
-    add_episode_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
     whole,
 )
+from .episode_args import add_episode_args, episode_inputs
 from .progress import Progress
 
 
@@ -59,14 +57,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     """Score the policy; writes DIR/evaluation.json and prints its summary line."""
     import pyramid_sim
 
-    from .args import config_from_args, spec_from_args
-
-    config = config_from_args(args)
-    spec = spec_from_args(args, config)
-    check_writable_dir(args.out)
-    if spec.goals is not None:
-        raise ConfigError("structure: list is not evaluated yet; accepted the generated ones")
-    sizes: dict[str, Any] = dict(spec.size)
+    config, spec, sizes = episode_inputs(args, "evaluated")
     with (
         removed_if_failed([args.out]),
         holding([(args.out, "out")]),

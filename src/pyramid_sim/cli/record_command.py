@@ -4,21 +4,19 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
 
-from ..errors import ConfigError
-from ..output.files import check_writable_dir, removed_if_failed
+from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import IMAGE_SIZE_TEXT, WORKERS, parse_whole
 from .args import (
     add_backend_args,
-    add_episode_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
     whole,
 )
+from .episode_args import add_episode_args, episode_inputs
 from .progress import Progress
 
 CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
@@ -80,15 +78,8 @@ def cmd_record(args: argparse.Namespace) -> int:
     """Record what the dataset lacks; exit 1 if an episode's build failed (it is kept)."""
     import pyramid_sim
 
-    from .args import config_from_args, spec_from_args
-
-    config = config_from_args(args)
-    spec = spec_from_args(args, config)
+    config, spec, sizes = episode_inputs(args, "recorded")
     cameras = () if args.cameras.strip() == "none" else _names(args.cameras)
-    check_writable_dir(args.out)
-    if spec.goals is not None:
-        raise ConfigError("structure: list is not recorded yet; accepted the generated structures")
-    sizes: dict[str, Any] = dict(spec.size)
     with (
         removed_if_failed([args.out]),
         holding([(args.out, "out")]),

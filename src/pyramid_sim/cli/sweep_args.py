@@ -78,7 +78,7 @@ def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
     )
     return SweepConfig(
         axes=axes,
-        structure=spec_from_args(args, SimConfig()),
+        structure=spec_from_args(args, SimConfig.for_robot(args.robot)),
         arms=args.arms,
         repeats=args.repeats,
         robot=args.robot,

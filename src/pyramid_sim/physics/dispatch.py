@@ -147,7 +147,7 @@ class ArmDispatch:
             if task.action in (Action.PLACE, Action.BUILD):
                 # A one-jaw hand leaves its fixed jaw against the brick it let go: it lifts
                 # clear before it turns (a turn on the way up dragged the brick 3 degrees).
-                one_jaw = self.config.robot_description.pick_clearance > 0
+                one_jaw = self.config.robot_description.one_jaw
                 then = self._yaw_after(arm, task.brick) if quick and not one_jaw else None
                 steps += place_steps(target, motion, then_yaw=then, **grasp)
             if self.scheduler.waits_at_standby and not self._may_go(arm, steps[0]):

@@ -103,6 +103,11 @@ class RobotDescription:
         if set(self.arms) != {"left", "right"}:
             raise ValueError(f"arms: {sorted(self.arms)}; a preset has a left and a right arm")
 
+    @property
+    def one_jaw(self) -> bool:
+        """A hand of one moving jaw against a fixed one (the SO-101's), not two fingers."""
+        return len(self.arms["left"].finger_joints) == 1
+
     def open_gap(self) -> float:
         """The finger-gap command (both fingers' joint travel, m) that opens the hand."""
         return 2 * (self.finger_stroke - self.open_margin)
