@@ -190,7 +190,9 @@ def _run_processes(
             mp.connection.wait(waitables, timeout=wait)
             for worker in list(pool):
                 end = worker.end(timeout)
-                if not worker.proc.is_alive():  # crashed or timed out: replaced when needed
+                # Crashed or timed out, its job's end taken (one that dies after `end` looked
+                # still holds its job: the next pass reports it): replaced when needed.
+                if not worker.busy and not worker.proc.is_alive():
                     worker.stop()
                     pool.remove(worker)
                 if end is not None:
