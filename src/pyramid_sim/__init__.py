@@ -30,6 +30,7 @@ from .core.seed_pyramids import (
 )
 from .core.structures import STRUCTURES, StructureSpec
 from .errors import ConfigError, MachineError, PyramidSimError, UnreachableError
+from .learning.observation_names import environment_names
 from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
@@ -84,10 +85,12 @@ __all__ = [
     "UnreachableError",
     "VideoConfig",
     "__version__",
+    "environment_names",
     "arrange",
     "build",
     "create_coordinates",
     "create_coordinates_new",
+    "environment_names",
     "make_plan",
     "plan",
     "evaluate",

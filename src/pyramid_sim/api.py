@@ -175,6 +175,7 @@ RECORD_KEYWORDS = (
     "workers",
     "backend",
     "ray_address",
+    "noise",
     "on_frame",
     "on_episode",
     "arms",
@@ -196,6 +197,7 @@ def record(
     workers: int = 1,
     backend: str = "process",
     ray_address: str | None = None,
+    noise: float = 0.0,
     on_frame: Any = None,
     on_episode: Any = None,
     config: SimConfig | None = None,
@@ -206,7 +208,9 @@ def record(
     `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
     layout or full: learning/variation.py) with its `randomize` parts;
     `workers` episodes at once, in processes here or as Ray tasks (`backend="ray"`, on the
-    cluster at `ray_address` or a Ray started here). Episodes already in `out` are kept and not
+    cluster at `ray_address` or a Ray started here). With `noise` (rad), what is executed is
+    the expert's joint targets plus an offset drawn each second, while the label stays the
+    expert's, which plans from where the arm is (DART). Episodes already in `out` are kept and not
     run again. `on_frame(episode, its frames so far)` hears each frame (with workers, each
     episode's all at once as it lands), `on_episode(episodes in the dataset)` the count before
     the first is filmed and after each lands.
@@ -229,6 +233,7 @@ def record(
         workers,
         backend,
         ray_address,
+        noise,
     )
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run

@@ -171,6 +171,7 @@ WORKERS = Bound("workers", 1, 64)
 SWEEP_WORKERS = Bound("workers", 1, 256)  # a sweep's runs at once: a Ray cluster has many
 REPEATS = Bound("repeats", 1, 100)  # a sweep's runs a grid point
 MAX_STEPS = Bound("max steps", 1, 10_000_000)
+NOISE = Bound("noise", 0.0, 0.05)  # rad: DART's offset on the executed joint targets
 IMAGE_HEIGHT = Bound("image height", 16, 1080)  # pixels, even
 IMAGE_WIDTH = Bound("image width", 16, 1920)
 IMAGE_SIZE_TEXT = f"even, {IMAGE_HEIGHT.whole_text} high and {IMAGE_WIDTH.whole_text} wide"

@@ -47,7 +47,8 @@ class PyramidSimEnv(EnvConfig):
             ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(motors,)),
             "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),
             "environment_state": PolicyFeature(
-                type=FeatureType.ENV, shape=((bricks + SPARE_BRICKS) * 7,)
+                type=FeatureType.ENV,
+                shape=(len(pyramid_sim.environment_names(bricks + SPARE_BRICKS, bricks)),),
             ),
         }
         self.features_map = {

@@ -7,13 +7,14 @@ from pathlib import Path
 
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import IMAGE_SIZE_TEXT, WORKERS, parse_whole
+from ..params import IMAGE_SIZE_TEXT, NOISE, WORKERS, parse_whole
 from .args import (
     add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
+    number,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
@@ -70,6 +71,15 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         default=1,
         help="episodes filmed at once, each in a process or a Ray task (default 1)",
     )
+    p.add_argument(
+        "--noise",
+        type=number("noise"),
+        default=0.0,
+        metavar="RAD",
+        help="DART: each joint's executed target off the expert's by an offset drawn every "
+        f"second from N(0, RAD), the expert's correction kept as the label; {NOISE.text} "
+        "(default 0)",
+    )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
@@ -113,6 +123,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             workers=args.workers,
             backend=args.backend,
             ray_address=args.ray_address,
+            noise=args.noise,
             config=config,
             **sizes,
         )

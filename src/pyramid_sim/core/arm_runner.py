@@ -15,6 +15,8 @@ from .poses import Pose
 from .primitives import Step, StepKind
 from .trajectory import Path, plan_path
 
+QUICK_RELEASE = 0.25  # of the close time, a closed loop's release opens the fingers in
+
 
 @dataclass
 class ArmRunner:
@@ -26,6 +28,8 @@ class ArmRunner:
     _segment: Path | None = None
     _t: float = 0.0
     _gap_from: float = 0.0
+    _opening: float | None = None  # when a release began to open the fingers
+    let_go_at_once: bool = False  # a release drops the squeeze at once (a closed loop's)
 
     @property
     def busy(self) -> bool:
@@ -56,6 +60,17 @@ class ArmRunner:
             self.config.brick.width, grip.force, grip.stiffness
         )
 
+    @property
+    def opening(self) -> bool:
+        """Whether a release has begun to open the fingers."""
+        return self._opening is not None
+
+    @property
+    def contact_gap(self) -> float:
+        """The gap command at which the pads just touch the brick, squeezing nothing."""
+        grip = self.config.gripper
+        return self.squeeze_gap + grip.force / grip.stiffness
+
     def load(self, steps: list[Step]) -> None:
         self.steps = list(steps)
         self._start_step()
@@ -67,6 +82,7 @@ class ArmRunner:
 
     def _start_step(self) -> None:
         self._t = 0.0
+        self._opening = None
         self._segment = None
         self._gap_from = self.gap
         step = self.current
@@ -90,7 +106,8 @@ class ArmRunner:
 
     def tick(self, dt: float, ik_error: Callable[[], float]) -> Step | None:
         """Advance by dt; returns the step that finished on this tick, if any. `ik_error`
-        gives the IK's position error, asked only once a move's path has run its course."""
+        gives the IK's position error, asked only once a move's path has run its course, and
+        before a release opens the fingers."""
         step = self.current
         if step is None:
             return None
@@ -109,13 +126,19 @@ class ArmRunner:
             squeeze = self.squeeze_gap
             self.gap = self._gap_from + (squeeze - self._gap_from) * ramp if ramp < 1 else 0.0
             finished = self._t >= grip.close_time + grip.settle_time
-        else:  # RELEASE: hold still, then open
-            wait = self.config.motion.settle_before_release
-            ramp = min(1.0, max(0.0, self._t - wait) / grip.close_time)
+        else:  # RELEASE: hold still until the hand is where it should be, then open
+            if self._opening is None and self._t >= self.config.motion.settle_before_release:
+                if ik_error() <= self.config.motion.position_tolerance:
+                    self._opening = self._t - dt  # the ramp's first share on this tick
+            since = 0.0 if self._opening is None else self._t - self._opening
+            opening_time = grip.close_time * (QUICK_RELEASE if self.let_go_at_once else 1.0)
+            ramp = min(1.0, since / opening_time)
             start = max(self._gap_from, self.squeeze_gap)
+            if self.let_go_at_once:  # the squeeze gone at once, the pads off slowly
+                start = max(start, self.contact_gap)
             self.gap = start + (self.open_gap - start) * ramp if ramp > 0 else self._gap_from
             # Done once the fingers are open: no force has to build, unlike a grip's.
-            finished = self._t >= wait + grip.close_time
+            finished = self._opening is not None and since >= opening_time
         if not finished:
             return None
         self.steps.pop(0)

@@ -29,17 +29,18 @@ from ..errors import ConfigError
 from ..options import resolve
 from ..output.judge import judge
 from ..physics.loop import BuildLoop
+from ..physics.motion_generator import MotionGenerator, motion_limits
 from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
 from . import variation as var
-from .command_limits import CommandLimiter, joint_limits, spline_ramp
+from .command_limits import spline_ramp
 from .ee_control import EndEffectorControl
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
 from .lerobot_units import lerobot_units
 from .outcome import PlacementWatch, episode_failure
-from .spaces import checked_action, joint_space, observation_space, renderer
+from .spaces import checked_action, goals, joint_space, observation_space, renderer
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
@@ -111,11 +112,16 @@ class BuildEnv(gymnasium.Env):
         self.ee = EndEffectorControl(
             self.layout, motion.speed, motion.turn_rate, motion.control_dt, self.control_steps, floor
         )  # fmt: skip
-        self.limiter = CommandLimiter(*joint_limits(self.layout, robot), self.dt)
+        self.generator = MotionGenerator(
+            motion_limits(robot, self.config.gripper.close_time), self.config.motion.control_dt
+        )
+        self.lag_peak = 0.0  # the largest distance of the command from its target (rad or m)
         self.action_space = self.ee.space if action_mode == "ee" else joint_space(self.layout)
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
-        self.observation_space = observation_space(self.layout, self.cameras, self.image_size)
+        self.observation_space = observation_space(
+            self.layout, len(self.plan.bricks), self.cameras, self.image_size
+        )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
@@ -134,12 +140,15 @@ class BuildEnv(gymnasium.Env):
         loop = self._loop
         loop.feed_spot()  # the first brick on the spot before the first observation
         self.placing = PlacementWatch(loop)
+        self._goals = goals(self.plan)
         held = loop.data.ctrl[loop.handles.ctrl_index].copy()
         self._command = (held, held)  # the last target, and where the ramp left the command
-        self.limiter.reset(held)
+        self.generator.reset(held)
+        self.lag_peak = 0.0
         self.ee.reset(loop)
         self._expert.reset()
         self._steps = 0
+        self.steps_taken = 0  # environment steps in this episode
         self.ended = False
 
     # --- the Gymnasium API ---------------------------------------------------------------
@@ -159,17 +168,21 @@ class BuildEnv(gymnasium.Env):
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         names = self.ee.names if self.action_mode == "ee" else self.layout.names
         target = checked_action(action, self._low, self._high, names)
-        if self.limit_commands and self.action_mode == "joint":
-            target = self.limiter.limit(target)
+        self.steps_taken += 1
         loop, steps = self._loop, self.control_steps
         failure: str | None = None
         newly = 0
         ramp = None
-        if self.action_mode == "joint":
+        if self.action_mode == "joint" and not self.limit_commands:
             ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
         for k in range(1, steps + 1):
             try:
-                command = self.ee.command(loop, target) if ramp is None else ramp(k / steps)
+                if self.action_mode == "ee":
+                    command = self.ee.command(loop, target)
+                elif ramp is None:
+                    command = self.generator.step(target)
+                else:
+                    command = ramp(k / steps)
                 failure = loop.apply(command)
             except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
                 failure = no_motion_reason(loop.data.time)
@@ -178,6 +191,8 @@ class BuildEnv(gymnasium.Env):
             failure = failure or episode_failure(loop, self._steps % CHECK_EVERY == 0)
             if failure is not None or self.placing.count == len(self.plan.bricks):
                 break
+        if ramp is None and self.action_mode == "joint":
+            self.lag_peak = max(self.lag_peak, self.generator.lag())
         success = self.placing.count == len(self.plan.bricks)
         # The build's time limit ends an episode as truncated, whatever stopped the loop there.
         truncated = not success and loop.data.time > self.config.max_sim_time
@@ -228,6 +243,7 @@ class BuildEnv(gymnasium.Env):
         observed: dict[str, Any] = {
             "state": lay.state(loop.data, loop.handles, self._state).copy(),
             "bricks": loop.data.qpos[self._brick_q],
+            "goals": self._goals.copy(),
         }
         if self.cameras:
             observed["images"] = self.images(self.cameras)
@@ -266,8 +282,7 @@ def episode_info(env: BuildEnv, failure: str | None, success: bool | None) -> di
         "bricks_placed": env.placing.count,
         "failure": failure,
         "is_success": bool(success),
-        "clamped_steps": env.limiter.clamped,
-        "clamp_peak": env.limiter.peak,
+        "command_lag": env.lag_peak,
         "seed": env.seed_of_episode,
         "randomization": deepcopy(env.drawn),
         "result": result,

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from .env import BuildEnv
+from .spaces import environment_state
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
 PRIMITIVES = (
@@ -41,7 +42,7 @@ class Frame:
     action, the action, and the reward, end and success that followed it."""
 
     state: np.ndarray  # float32, the layout's order
-    environment: np.ndarray  # float32: every magazine brick's pose, brick by brick
+    environment: np.ndarray  # float32: every magazine brick's pose, then every target's
     action: np.ndarray  # float32
     images: dict[str, np.ndarray]  # camera -> H x W x 3 uint8
     reward: float
@@ -72,20 +73,65 @@ def _doing(env: BuildEnv) -> tuple[tuple[int, int], tuple[int, int]]:
     return (primitives[0], primitives[1]), (bricks[0], bricks[1])
 
 
+SECONDS_PER_BRICK = 30.0  # of an episode's default time limit
+
+
+def step_limit(bricks: int, fps: int) -> int:
+    """An episode's default step limit: 30 s a brick and 30 s more, at `fps` (the expert
+    takes 10-20 s a brick; docs/evaluation.md). A recording's episodes end there too."""
+    return int((SECONDS_PER_BRICK * bricks + SECONDS_PER_BRICK) * fps)
+
+
+NOISE_PERIOD = 1.0  # s between draws of the noise's offset: a learner's errors hold a while
+
+
+class JointNoise:
+    """DART's noise (Laskey et al. 2017): an offset on the executed joint targets, each joint
+    drawn from N(0, `scale`) every NOISE_PERIOD, from the episode's seed (the fingers are
+    left alone)."""
+
+    def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
+        self.scale = scale
+        self.joints = np.array([not n.endswith("/gripper") for n in env.layout.names])
+        self.period = max(1, round(NOISE_PERIOD * env.fps))
+        self.random = np.random.default_rng([seed, 0xDA27])
+        self.offset = np.zeros(len(self.joints))
+        self.steps = 0
+
+    def __call__(self, action: np.ndarray) -> np.ndarray:
+        """`action` as executed."""
+        if self.scale == 0.0:
+            return action
+        if self.steps % self.period == 0:
+            self.offset = self.joints * self.random.normal(0.0, self.scale, len(self.joints))
+        self.steps += 1
+        return (action + self.offset).astype(np.float32)
+
+
 def expert_episode(
-    env: BuildEnv, seed: int, cameras: tuple[str, ...], on_frame: Callable[[Frame], Any]
+    env: BuildEnv,
+    seed: int,
+    cameras: tuple[str, ...],
+    on_frame: Callable[[Frame], Any],
+    noise: float = 0.0,
 ) -> EpisodeEnd:
     """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame each
-    environment step (the environment steps at the dataset's rate); the last is done."""
+    environment step (the environment steps at the dataset's rate), at most `step_limit`
+    frames, as an evaluation's; the last is done. With
+    `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
+    action is still the expert's: what to do from where the arm really is."""
     obs, _ = env.reset(seed=seed)
+    executed = JointNoise(env, seed, noise)
+    limit = step_limit(len(env.plan.bricks), env.fps)
     frames = 0
     while True:
         action = env.expert_action()
         primitive, brick = _doing(env)  # what the expert's action is for
         state = obs["state"].astype(np.float32)
-        environment = obs["bricks"].astype(np.float32).ravel()
+        environment = environment_state(obs)
         images = env.images(cameras) if cameras else {}
-        obs, reward, terminated, truncated, info = env.step(action)
+        obs, reward, terminated, truncated, info = env.step(executed(action))
+        truncated = truncated or frames + 1 >= limit
         done = terminated or truncated
         on_frame(
             Frame(
@@ -102,4 +148,5 @@ def expert_episode(
         )
         frames += 1
         if done:
-            return EpisodeEnd(frames, info["is_success"], info["failure"], info["result"])
+            failure = info["failure"] or (None if terminated else f"step limit: {limit} steps")
+            return EpisodeEnd(frames, info["is_success"], failure, info["result"])

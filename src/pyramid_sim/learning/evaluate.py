@@ -23,12 +23,12 @@ from ..output.files import atomic_path, write_json_atomic
 from ..params import EPISODES, MAX_STEPS
 from ..version import __version__
 from .env import BuildEnv
+from .episode import step_limit
 from .layout import check_seed, control_steps
 from .policies import make_policy
 from .scores import summary
 from .variation import DEFAULT_LEVEL, check_level
 
-SECONDS_PER_BRICK = 30.0  # of an episode's default time limit
 EVAL_SEED = EVAL_FIRST_SEED  # recordings start at 0 (`record --seed`)
 SPLIT = (
     "evaluation seeds first_seed..first_seed+episodes-1 (default from 100000); recordings "
@@ -90,12 +90,6 @@ class Evaluation:
         )
 
 
-def step_limit(bricks: int, fps: int) -> int:
-    """An episode's default step limit: 30 s a brick and 30 s more, at `fps` (the expert
-    takes 10-20 s a brick; docs/evaluation.md)."""
-    return int((SECONDS_PER_BRICK * bricks + SECONDS_PER_BRICK) * fps)
-
-
 def versions() -> dict[str, str]:
     """The versions that produced an evaluation."""
     import gymnasium
@@ -132,8 +126,7 @@ def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str,
         "failure": info["failure"] or (f"step limit: {steps} steps" if truncated else None),
         "truncated": bool(truncated),
         "steps": steps,
-        "clamped_steps": int(info["clamped_steps"]),  # the command limits' work
-        "clamp_peak": float(info["clamp_peak"]),
+        "command_lag": float(info["command_lag"]),  # the motion generator's work, rad
         "sim_time_s": info["sim_time_s"],
         "wall_time_s": time.perf_counter() - start,
     }

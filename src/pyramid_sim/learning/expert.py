@@ -1,7 +1,10 @@
 """The scripted builder as a policy: `act(observation) -> action`, as a learned policy is
 driven. It reads the environment's own build (scheduler, primitives, mink IK: the expert is
-privileged, not a learner) and plans as if it had driven every step it was asked for, so ask it
-once a step."""
+privileged, not a learner) and closes the loop on it: with the motion generator on, a move is
+done when the arm's tool is really there (not when the IK says so) and a steady error is
+worked away (physics/tool_feedback.py); when somebody else drove the arms since it was last
+asked, it plans from where they are. So it can take over an episode midway, and label
+what to do after a mistake (DART: `record --noise`)."""
 
 from __future__ import annotations
 
@@ -23,11 +26,17 @@ class ExpertPolicy:
         self.env: BuildEnv = env.unwrapped
         self._loop: BuildLoop | None = None
         self._done = False
+        self._asked = -1  # the environment step it was last asked at
+        self._last: np.ndarray | None = None  # its last joint action
 
     def reset(self) -> None:
         """A new episode (also noticed by itself when the environment was reset)."""
         self._loop = self.env.loop
+        if self.env.limit_commands:  # with the motion generator between it and the servos
+            self._loop.close_loop()
         self._done = False
+        self._asked = -1
+        self._last: np.ndarray | None = None
 
     def act(self, observation: Any = None) -> np.ndarray:
         """The action for the environment's next step (the observation is not needed: the
@@ -36,6 +45,9 @@ class ExpertPolicy:
         if self._loop is not env.loop:
             self.reset()
         loop = env.loop
+        if self._asked >= 0 and env.steps_taken != self._asked + 1:
+            loop.resync()  # somebody else drove the arms: on from where they are
+        self._asked = env.steps_taken
         if env.action_mode == "ee":
             return self._end_effector(loop)
         command = None
@@ -45,7 +57,11 @@ class ExpertPolicy:
                 self._done = True
                 break
             command = step.astype(np.float32)  # a copy: the loop rewrites its command
-        return env.held_command() if command is None else command
+        if command is not None:
+            self._last = command
+        elif self._last is None:  # built before it moved: hold what is commanded
+            self._last = env.held_command()
+        return self._last  # once built, where it last aimed (not where a noise took it)
 
     def _end_effector(self, loop: BuildLoop) -> np.ndarray:
         env = self.env

@@ -13,8 +13,8 @@ from typing import Any
 from . import lerobot_format as fmt
 from .env import BuildEnv
 from .episode import Frame, expert_episode
-from .layout import BRICK_FIELDS
 from .lerobot_units import LerobotUnits
+from .observation_names import environment_names
 from .record_config import RecordConfig
 from .staging import staging_folder
 
@@ -36,12 +36,10 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     """The dataset's per-frame features, from the environment's layout."""
     names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
     height, width = config.image_size
-    bricks = tuple(
-        f"brick{slot}.{field}" for slot in range(env.layout.bricks) for field in BRICK_FIELDS
-    )
+    environment = environment_names(env.layout.bricks, len(env.plan.bricks))
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
-        "observation.environment_state": fmt.Feature("float32", (len(bricks),), bricks),
+        "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),
         "action": fmt.Feature("float32", (len(names),), names),
     }
     for camera in config.cameras:
@@ -126,7 +124,8 @@ def film_episode(
             on_frame(files.episode, frames)
 
     try:
-        end = expert_episode(env, config.first_seed + files.episode, config.cameras, keep)
+        seed = config.first_seed + files.episode
+        end = expert_episode(env, seed, config.cameras, keep, config.noise)
         return end, files.close()
     except BaseException:
         files.abort()

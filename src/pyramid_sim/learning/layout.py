@@ -17,7 +17,6 @@ from ..physics import names as c
 from ..physics.handles import SceneHandles
 from ..robots import RobotDescription
 
-BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
 DEFAULT_FPS = 25
 
 

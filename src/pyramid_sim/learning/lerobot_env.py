@@ -1,7 +1,7 @@
 """The environment as lerobot's evaluation reads one (`lerobot-eval --env.type=pyramid_sim`,
 through the `lerobot_env_pyramid_sim` plugin in plugins/): the observation under lerobot's
 keys, `agent_pos` (observation.state), `environment_state` (observation.environment_state, the
-bricks' poses flattened as `record` writes them) and `pixels` (each camera's image,
+bricks' poses and the targets', flattened as `record` writes them) and `pixels` (each camera's image,
 observation.images.<camera>), and the task's text. No lerobot import: it is a client."""
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ from ..choices import LEROBOT_ENV_ID
 from .env import BuildEnv
 from .episode import task_text
 from .lerobot_units import LerobotUnits
+from .observation_names import environment_names
+from .spaces import environment_state
 
 __all__ = ["LEROBOT_ENV_ID", "LerobotView", "lerobot_keys", "make_lerobot_env"]
 
@@ -36,12 +38,13 @@ class LerobotView(gymnasium.Wrapper):
             self.action_space = spaces.Box(ends.min(0), ends.max(0), dtype=np.float32)
         inner = env.observation_space
         assert isinstance(inner, spaces.Dict)
-        bricks = inner["bricks"].shape
-        assert bricks is not None
+        bricks, targets = inner["bricks"].shape, inner["goals"].shape
+        assert bricks is not None and targets is not None
+        self.environment_names = environment_names(bricks[0], targets[0])
         observed: dict[str, spaces.Space] = {
             "agent_pos": spaces.Box(-np.inf, np.inf, inner["state"].shape, dtype=np.float32),
             "environment_state": spaces.Box(
-                -np.inf, np.inf, (bricks[0] * bricks[1],), dtype=np.float32
+                -np.inf, np.inf, (len(self.environment_names),), dtype=np.float32
             ),
         }
         if "images" in inner.spaces:
@@ -65,7 +68,7 @@ def lerobot_keys(observation: dict[str, Any], units: LerobotUnits) -> dict[str, 
     """A BuildEnv observation under lerobot's keys, its state in lerobot's units."""
     mapped: dict[str, Any] = {
         "agent_pos": units.to_lerobot(observation["state"]),
-        "environment_state": observation["bricks"].astype(np.float32).ravel(),
+        "environment_state": environment_state(observation),
     }
     if "images" in observation:
         mapped["pixels"] = observation["images"]

@@ -9,7 +9,7 @@ from typing import Any
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
-from ..params import EPISODES, WORKERS
+from ..params import EPISODES, NOISE, WORKERS
 from .layout import check_image_size, control_steps
 from .variation import DEFAULT_LEVEL, check_level
 
@@ -28,10 +28,11 @@ class RecordConfig:
     image_size: tuple[int, int] = (224, 224)
     variation: str = DEFAULT_LEVEL  # how episodes differ (learning/variation.py)
     randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
-    limit_commands: bool = True  # the environment's: commands within the joints' limits
+    limit_commands: bool = True  # the environment's: commands through the motion generator
     workers: int = 1  # episodes filmed at once, each in a process of its own
     backend: str = "process"  # or ray: the episodes as Ray tasks
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
+    noise: float = 0.0  # rad: DART's offset on the executed joints, the expert's own the label
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
@@ -40,6 +41,7 @@ class RecordConfig:
         check_level(self.variation)
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
+        NOISE.check(self.noise)
         if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
             raise ConfigError(
                 f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "

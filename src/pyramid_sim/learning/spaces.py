@@ -9,17 +9,18 @@ import numpy as np
 from gymnasium import spaces
 
 from . import layout as lay
+from .observation_names import BRICK_FIELDS, GOAL_FIELDS
 
 
 def observation_space(
-    layout: lay.Layout, cameras: tuple[str, ...], image_size: tuple[int, int]
+    layout: lay.Layout, targets: int, cameras: tuple[str, ...], image_size: tuple[int, int]
 ) -> spaces.Dict:
-    """The state and the bricks (every magazine brick's pose), and each camera's image."""
+    """The state, the bricks (every magazine brick's pose), the goals (every target's pose,
+    in build order: where the bricks must go), and each camera's image."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
-        "bricks": spaces.Box(
-            -np.inf, np.inf, (layout.bricks, len(lay.BRICK_FIELDS)), dtype=np.float64
-        ),
+        "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
+        "goals": spaces.Box(-np.inf, np.inf, (targets, len(GOAL_FIELDS)), dtype=np.float64),
     }
     if cameras:
         height, width = image_size
@@ -27,6 +28,20 @@ def observation_space(
             {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in cameras}
         )
     return spaces.Dict(observed)
+
+
+def environment_state(observation: dict[str, Any]) -> np.ndarray:
+    """An observation's bricks and goals as one float32 vector, in the order of
+    `observation_names.environment_names`."""
+    return np.concatenate([observation["bricks"].ravel(), observation["goals"].ravel()]).astype(
+        np.float32
+    )
+
+
+def goals(plan: Any) -> np.ndarray:
+    """Every target's pose (`GOAL_FIELDS`) in build order, from a plan."""
+    ordered = sorted(plan.bricks, key=lambda b: b.index)
+    return np.array([[*b.target.pose.position, b.target.pose.yaw] for b in ordered])
 
 
 def joint_space(layout: lay.Layout) -> spaces.Box:

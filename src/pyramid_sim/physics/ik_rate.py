@@ -9,7 +9,11 @@ collision limit's reach. Approach, servo, grip and release run at the full rate.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
+from ..choices import Arm
 from ..config import SimConfig
+from ..core.poses import Pose
 from ..core.primitives import Step
 from . import names as c
 from .dispatch import ArmDispatch
@@ -28,6 +32,7 @@ class IKRate:
         self.interval = config.motion.free_ik_interval
         self.dt = config.motion.control_dt
         self.solves = 0
+        self.aim: Callable[[Arm, Pose], Pose] | None = None  # a shift of where the IK aims
         self._planned_for: tuple[tuple[Step | None, bool], ...] = ()
 
     def step(self) -> bool:
@@ -66,5 +71,6 @@ class IKRate:
         """Aim the IK where the arms' paths will be at the end of `span` control steps and
         step over them (False if the IK refused the span)."""
         for a in c.ARMS:
-            self.ik.set_target(a, self.dispatch.runners[a].pose_ahead((span - 1) * self.dt))
+            pose = self.dispatch.runners[a].pose_ahead((span - 1) * self.dt)
+            self.ik.set_target(a, pose if self.aim is None else self.aim(a, pose))
         return self.ik.step(span)

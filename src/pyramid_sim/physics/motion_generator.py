@@ -1,0 +1,121 @@
+"""The arm's motion generator, as a real arm has one between its commands and its servos
+(libfranka's rate limiter, MoveIt Servo): each command is a target, and the joints' command
+follows it at most at the joints' speed, acceleration and jerk limits, whatever the targets
+do. A policy's chunk boundary, its jitter or a slow policy becomes smooth motion rather than
+a jolt that shakes a held brick loose. Ruckig computes the time-optimal jerk-limited motion
+online, each control cycle, from the command's position, speed and acceleration."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from ruckig import InputParameter, OutputParameter, Result, Ruckig, Synchronization
+
+from ..robots import RobotDescription
+from .ik_terms import ARM_VELOCITY_MARGIN, VELOCITY_MARGIN
+
+ACCELERATION_SHARE = 0.5  # of the joints' acceleration limits: at full, several joints at once
+# asked for more torque than the arm has
+JERK_TIME = 0.05  # s from rest to full acceleration: the jerk limit is acceleration / this
+GRIPPER_SPEED = 2.0  # times the gap's full stroke a close time: fingers closing on a brick
+OPENING_SPEED = 10.0  # the same, opening: a hand lets go at once, before a jolt drags the brick
+
+
+@dataclass(frozen=True)
+class MotionLimits:
+    """Per entry of the command (each arm's joints, then its finger gap): the most speed
+    (rad/s or m/s; `falling` the most downwards), acceleration and jerk the generated command
+    may have, and which entries are fingers (they keep their own time, not the arm's)."""
+
+    speed: np.ndarray
+    falling: np.ndarray
+    acceleration: np.ndarray
+    jerk: np.ndarray
+    fingers: np.ndarray  # bool
+
+    def __post_init__(self) -> None:
+        for name in ("speed", "falling", "acceleration", "jerk"):
+            values = getattr(self, name)
+            if values.shape != self.speed.shape or not np.all(np.isfinite(values) & (values > 0)):
+                raise ValueError(f"motion limits: {name} must be positive and finite, entry-wise")
+
+
+def motion_limits(robot: RobotDescription, close_time: float) -> MotionLimits:
+    """The robot's limits in the command's order: the joints at the IK's speed margins and
+    ACCELERATION_SHARE of their acceleration limits, the finger gap closing at GRIPPER_SPEED
+    strokes a `close_time` and opening at OPENING_SPEED."""
+    speed: list[float] = []
+    falling: list[float] = []
+    acceleration: list[float] = []
+    fingers: list[bool] = []
+    stroke = 2 * robot.finger_stroke
+    for arm in robot.arms.values():
+        for i, (v, a) in enumerate(zip(arm.velocity_limits, arm.acceleration_limits)):
+            speed.append((ARM_VELOCITY_MARGIN if i < 4 else VELOCITY_MARGIN) * v)
+            falling.append(speed[-1])
+            acceleration.append(ACCELERATION_SHARE * a)
+            fingers.append(False)
+        speed.append(OPENING_SPEED * stroke / close_time)
+        falling.append(GRIPPER_SPEED * stroke / close_time)
+        acceleration.append(speed[-1] / JERK_TIME)
+        fingers.append(True)
+    a = np.array(acceleration)
+    return MotionLimits(np.array(speed), np.array(falling), a, a / JERK_TIME, np.array(fingers))
+
+
+class MotionGenerator:
+    """The command's position, speed and acceleration, stepped `dt` at a time toward each
+    target by Ruckig within `limits`; `step(target)` is the next command."""
+
+    def __init__(self, limits: MotionLimits, dt: float) -> None:
+        self.limits, self.dt = limits, dt
+        n = len(limits.speed)
+        self._otg = Ruckig(n, dt)
+        self._input = InputParameter(n)
+        self._output = OutputParameter(n)
+        self._input.max_velocity = limits.speed.tolist()
+        self._input.min_velocity = (-limits.falling).tolist()
+        self._input.max_acceleration = limits.acceleration.tolist()
+        self._input.max_jerk = limits.jerk.tolist()
+        # Every joint arrives together (Ruckig's default, said here since it matters): joints
+        # each on its own fastest way asked for torque past the limits under a chunked
+        # gait (docs/learning.md). The fingers keep their own time.
+        self._input.per_dof_synchronization = [
+            Synchronization.No if f else Synchronization.Time for f in limits.fingers
+        ]
+        self.position = np.zeros(n)
+        self.velocity = np.zeros(n)
+        self._target = np.zeros(n)
+
+    def reset(self, position: np.ndarray) -> None:
+        """At rest at `position` (a new episode's command)."""
+        self.position = np.asarray(position, dtype=np.float64).copy()
+        self.velocity = np.zeros_like(self.position)
+        self._target = self.position.copy()
+        zeros = [0.0] * len(self.position)
+        self._input.current_position = self.position.tolist()
+        self._input.current_velocity = zeros
+        self._input.current_acceleration = zeros
+        self._input.target_velocity = zeros
+        self._input.target_acceleration = zeros
+
+    def step(self, target: np.ndarray) -> np.ndarray:
+        """The command one `dt` later, heading for `target` to arrive there at rest: whatever
+        the targets do, it never overshoots one."""
+        if not np.array_equal(target, self._target):
+            self._target = np.asarray(target, dtype=np.float64).copy()
+            self._input.target_position = self._target.tolist()
+        elif np.array_equal(self.position, self._target) and not self.velocity.any():
+            return self.position  # arrived and at rest: nothing to compute
+        result = self._otg.update(self._input, self._output)
+        if result not in (Result.Working, Result.Finished):
+            raise RuntimeError(f"motion generator: Ruckig returned {result}")
+        self._output.pass_to_input(self._input)
+        self.position = np.array(self._output.new_position)
+        self.velocity = np.array(self._output.new_velocity)
+        return self.position
+
+    def lag(self) -> float:
+        """How far the command is from its target now, the largest entry (rad or m)."""
+        return float(np.max(np.abs(self._target - self.position)))

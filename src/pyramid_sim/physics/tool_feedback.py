@@ -1,0 +1,104 @@
+"""The expert's loop closed on the measured tool and brick: a move is done when the arm's tool
+centre is really at its pose, and a slow integral of the remaining error shifts where the IK
+aims, so a steady error between command and arm (an offset a policy or DART's noise adds, a
+servo's sag) is worked away at the end of each move. Setting a brick down, the error is the
+brick's from its target across the table (its grip's offset included), so the brick, not the
+hand, comes to where it belongs."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import mujoco
+import numpy as np
+
+from ..choices import Arm
+from ..core.plan import Plan
+from ..core.poses import Pose
+from . import names as c
+from .custody import BrickCustody
+from .dispatch import ArmDispatch
+
+TIME_CONSTANT = 0.2  # s of the integral: slower than the motion generator and servos' lag
+CAP = 0.02  # m: the most the aim is shifted, each axis
+PATIENCE = 1.0  # s after a move's path ends before the IK's own error is enough again
+PLACING = ("servo", "release")  # the steps that set a carried brick down
+REST_SPEED = 0.01  # m/s: a tool slower than this has settled; a lag still closing is no error
+
+
+class ToolFeedback:
+    """Each arm's aim shift (`aim`) and the measured error a move's end is judged by
+    (`error_of`), read from `data` at the arms' tool sites."""
+
+    def __init__(
+        self,
+        data: mujoco.MjData,
+        sites: dict[Arm, int],
+        dispatch: ArmDispatch,
+        custody: BrickCustody,
+        plan: Plan,
+        ik_error: dict[Arm, Callable[[], float]],
+        dt: float,
+    ) -> None:
+        self.data, self.sites, self.dispatch, self.dt = data, sites, dispatch, dt
+        self.custody = custody
+        self._targets = {b.index: b.target.pose for b in plan.bricks}
+        self._ik_error = ik_error
+        self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
+        self._was = {a: data.site_xpos[sites[a]].copy() for a in c.ARMS}
+        self.bias = {a: np.zeros(3) for a in c.ARMS}
+        self._waited = {a: 0.0 for a in c.ARMS}
+        self._step: dict[Arm, object] = {a: None for a in c.ARMS}
+
+    def aim(self, arm: Arm, pose: Pose) -> Pose:
+        """Where the IK aims for the arm's tool to come to `pose`."""
+        return pose.moved(*self.bias[arm])
+
+    def _miss(self, arm: Arm) -> np.ndarray:
+        """How far the tool is from its pose (m); setting a brick down, across the table the
+        brick's from its target."""
+        miss = self.dispatch.runners[arm].pose.position - self.data.site_xpos[self.sites[arm]]
+        step, held = self.dispatch.runners[arm].current, self._held[arm]
+        if held is not None and step is not None and step.name in PLACING:
+            slot, brick = held
+            body = self.custody.handles.brick_body[slot]
+            target = self._targets[brick]
+            miss[:2] = (target.x, target.y) - self.data.xpos[body][:2]
+        return miss
+
+    def update(self) -> None:
+        """One control step: each arm meant to stand still (a move's path run, a grip, a
+        release until it opens) and at rest has its aim shifted by the integral of its
+        measured error."""
+        for arm in c.ARMS:
+            runner, carry = self.dispatch.runners[arm], self.custody.carry[arm]
+            if carry is not None:
+                self._held[arm] = (carry.slot, carry.index)
+            elif runner.current is None or runner.current.name not in PLACING:
+                self._held[arm] = None
+            if runner.current is not self._step[arm]:
+                self._step[arm], self._waited[arm] = runner.current, 0.0
+            tool = self.data.site_xpos[self.sites[arm]]
+            speed = float(np.linalg.norm(tool - self._was[arm])) / self.dt
+            self._was[arm] = tool.copy()
+            if runner.current is None or not runner.started or runner.time_left() > 0.0:
+                continue
+            if runner.opening:  # the brick is let go: a hand moving now would only shove it
+                continue
+            self._waited[arm] += self.dt
+            if speed > REST_SPEED:  # still arriving: what is left may be the lag, not an offset
+                continue
+            shifted = self.bias[arm] + self._miss(arm) * (self.dt / TIME_CONSTANT)
+            self.bias[arm] = np.clip(shifted, -CAP, CAP)
+
+    def error_of(self, arm: Arm) -> Callable[[], float]:
+        """The arm's measured position error (m), asked once a move's path has run its
+        course. Past PATIENCE the IK's error stands in (an arm held off its pose by contact
+        would never end the move otherwise)."""
+
+        def error() -> float:
+            if self._waited[arm] > PATIENCE:
+                return self._ik_error[arm]()
+            return float(np.linalg.norm(self._miss(arm)))
+
+        return error

@@ -1,0 +1,90 @@
+"""The expert with the loop closed, as a learner needs it: a chunked gait through the motion
+generator still builds, it takes over from wherever somebody else left the arms, DART's noise
+moves what is executed but not the label, and the goal is in the observation."""
+
+import gymnasium
+import numpy as np
+
+import pyramid_sim
+from pyramid_sim.learning.episode import JointNoise, expert_episode
+from pyramid_sim.learning.perturbations import Perturbation, Perturber
+from pyramid_sim.learning.spaces import environment_state
+
+ENV = pyramid_sim.ENV_ID
+TASK = dict(structure="pyramid-even", layers=1, variation="layout")
+
+
+def _joints(env) -> np.ndarray:
+    return np.array([not n.endswith("/gripper") for n in env.layout.names])
+
+
+def test_a_chunked_gait_on_the_expert_still_builds():
+    """Each action held 5 steps, then a jump (docs/learning.md has the 20-seed table)."""
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    for seed in (100_000, 100_001):
+        env.reset(seed=seed)
+        gait = Perturber(Perturbation("hold", 5), _joints(env), seed)
+        while True:
+            _, _, terminated, truncated, info = env.step(gait(env.expert_action()))
+            if terminated or truncated:
+                break
+        assert info["is_success"], (seed, info["failure"])
+    env.close()
+
+
+def test_the_expert_takes_over_from_where_somebody_else_left_the_arms():
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    env.reset(seed=5)
+    elsewhere = env.held_command() + np.float32(0.15) * _joints(env)  # every joint aside
+    for _ in range(40):
+        env.step(elsewhere)
+    arm = env.loop.handles.arm_qpos["left"]
+    moved = env.loop.data.qpos[arm].copy()
+    assert np.abs(moved - env.loop.ik.arm_q("left")).max() > 0.1  # the IK never saw it
+    first = env.expert_action()
+    assert np.abs(env.loop.ik.arm_q("left") - moved).max() < 0.05  # it planned from there
+    assert np.abs(first[:7] - moved).max() < 0.05  # no jump back to where it last aimed
+    while True:
+        _, _, terminated, truncated, info = env.step(env.expert_action())
+        if terminated or truncated:
+            break
+    assert info["is_success"], info["failure"]
+    env.close()
+
+
+def test_darts_noise_moves_what_is_executed_while_the_label_stays_the_experts():
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    noise = JointNoise(env, seed=3, scale=0.004)
+    action = env.held_command()
+    executed = noise(action)
+    offset = executed - action
+    assert np.all(offset[~_joints(env)] == 0) and 0 < np.abs(offset).max() < 0.02
+    assert np.array_equal(JointNoise(env, seed=3, scale=0.004)(action), executed)  # its seed's
+    frames = []
+    end = expert_episode(env, 3, (), frames.append, noise=0.004)
+    clean = []
+    expert_episode(env, 3, (), clean.append)
+    assert end.success and end.failure is None
+    n = min(len(frames), len(clean), 200)
+    states = np.array([f.state for f in frames[:n]]) - np.array([f.state for f in clean[:n]])
+    assert np.abs(states).max() > 0.002  # the noise moved the arms off the clean path
+    labels = np.array([f.action for f in frames[:n]])
+    reached = np.array([f.state for f in frames[1 : n + 1]])
+    # the label is the expert's own target, not what was executed: the arms sit off it
+    assert np.abs((labels[:-1] - reached[:-1])[:, _joints(env)]).mean() > 0.0005
+    env.close()
+
+
+def test_the_goal_is_observed_and_moves_with_the_layout():
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    obs, _ = env.reset(seed=1)
+    targets = sorted(env.plan.bricks, key=lambda b: b.index)
+    expected = [[*b.target.pose.position, b.target.pose.yaw] for b in targets]
+    assert np.allclose(obs["goals"], expected) and env.observation_space.contains(obs)
+    other, _ = env.reset(seed=2)
+    assert np.abs(other["goals"][:, :2] - obs["goals"][:, :2]).max() > 0.005
+    names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
+    state = environment_state(other)
+    assert len(names) == len(state) and names[-4:] == ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
+    assert state[-4] == np.float32(other["goals"][1][0])
+    env.close()
