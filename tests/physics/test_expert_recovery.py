@@ -54,16 +54,16 @@ def test_the_expert_takes_over_from_where_somebody_else_left_the_arms():
 
 def test_darts_noise_moves_what_is_executed_while_the_label_stays_the_experts():
     env = gymnasium.make(ENV, **TASK).unwrapped
-    noise = JointNoise(env, seed=3, scale=0.004)
+    noise = JointNoise(env, seed=0, scale=0.003)
     action = env.held_command()
     executed = noise(action)
     offset = executed - action
     assert np.all(offset[~_joints(env)] == 0) and 0 < np.abs(offset).max() < 0.02
-    assert np.array_equal(JointNoise(env, seed=3, scale=0.004)(action), executed)  # its seed's
+    assert np.array_equal(JointNoise(env, seed=0, scale=0.003)(action), executed)  # its seed's
     frames = []
-    end = expert_episode(env, 3, (), frames.append, noise=0.004)
+    end = expert_episode(env, 0, (), frames.append, noise=0.003)
     clean = []
-    expert_episode(env, 3, (), clean.append)
+    expert_episode(env, 0, (), clean.append)
     assert end.success and end.failure is None
     n = min(len(frames), len(clean), 200)
     states = np.array([f.state for f in frames[:n]]) - np.array([f.state for f in clean[:n]])
@@ -88,3 +88,23 @@ def test_the_goal_is_observed_and_moves_with_the_layout():
     assert len(names) == len(state) and names[-4:] == ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
     assert state[-4] == np.float32(other["goals"][1][0])
     env.close()
+
+
+def test_the_footprint_is_drawn_for_the_cameras_and_the_physics_is_the_same_bit_for_bit():
+    runs = {}
+    for footprints in (True, False):
+        env = gymnasium.make(
+            ENV, **TASK, cameras=("top",), image_size=(96, 96), footprints=footprints
+        ).unwrapped
+        obs, _ = env.reset(seed=4)
+        states = []
+        for _ in range(30):
+            obs, *_ = env.step(env.expert_action())
+            states.append(np.concatenate([obs["state"], obs["bricks"].ravel()]))
+        runs[footprints] = (np.array(states), obs["images"]["top"].astype(int))
+        assert env.loop.model.ngeom == runs.get("ngeom", env.loop.model.ngeom)
+        runs["ngeom"] = env.loop.model.ngeom  # nothing added to the model
+        env.close()
+    assert np.array_equal(runs[True][0], runs[False][0])
+    drawn = np.abs(runs[True][1] - runs[False][1]).sum(axis=2) > 30
+    assert 30 < drawn.sum() < 96 * 96 / 4  # two brick-sized tiles, seen from above

@@ -38,6 +38,7 @@ from .command_limits import spline_ramp
 from .ee_control import EndEffectorControl
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
+from .footprints import mark
 from .lerobot_units import lerobot_units
 from .outcome import PlacementWatch, episode_failure
 from .spaces import checked_action, goals, joint_space, observation_space, renderer
@@ -77,10 +78,12 @@ class BuildEnv(gymnasium.Env):
         image_size: tuple[int, int] = (224, 224),
         randomize: tuple[str, ...] = (),
         action_mode: str = "joint",
+        footprints: bool = True,
         **options: Any,
     ) -> None:
         own = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
-               "camera_name", "cameras", "image_size", "randomize", "action_mode")  # fmt: skip
+               "camera_name", "cameras", "image_size", "randomize", "action_mode",
+               "footprints")  # fmt: skip
         check_modes(action_mode, render_mode)
         self.action_mode, self.render_mode = action_mode, render_mode
         options = dict(options)
@@ -98,6 +101,7 @@ class BuildEnv(gymnasium.Env):
         self._camera_ids = lay.camera_names(robot)
         self.structure_spec, self.arms = spec, arms
         self.limit_commands = bool(limit_commands)
+        self.footprints = bool(footprints)  # the targets marked on the table, for the cameras
         self.seed_of_episode = self.config.seed
         self._renderer: Any = None
         self._eyes: Any = None  # the cameras' renderer, made at the first observation
@@ -219,6 +223,7 @@ class BuildEnv(gymnasium.Env):
             height, width = self.render_size
             self._renderer = renderer(self._loop.model, width, height)
         self._renderer.update_scene(self._loop.data, self._camera_ids[self.camera_name])
+        self._mark(self._renderer.scene)
         return self._renderer.render()
 
     def close(self) -> None:
@@ -257,8 +262,14 @@ class BuildEnv(gymnasium.Env):
         images = {}
         for camera in cameras:
             self._eyes.update_scene(self._loop.data, self._camera_ids[camera])
+            self._mark(self._eyes.scene)
             images[camera] = self._eyes.render()
         return images
+
+    def _mark(self, scene: Any) -> None:
+        if self.footprints:
+            brick, top = self._loop.config.brick, self._loop.config.layout.table_top_z
+            mark(scene, self._goals, brick.length, brick.width, top)
 
     @property
     def loop(self) -> BuildLoop:

@@ -45,7 +45,7 @@ class ExpertPolicy:
         if self._loop is not env.loop:
             self.reset()
         loop = env.loop
-        if self._asked >= 0 and env.steps_taken != self._asked + 1:
+        if env.steps_taken != self._asked + 1:
             loop.resync()  # somebody else drove the arms: on from where they are
         self._asked = env.steps_taken
         if env.action_mode == "ee":
