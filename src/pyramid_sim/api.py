@@ -15,7 +15,13 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .choices import DEFAULT_VARIATION, EVAL_FIRST_SEED, ArmChoice
+from .choices import (
+    DEFAULT_VARIATION,
+    EVAL_FIRST_SEED,
+    RECORD_CAMERAS,
+    RECORD_IMAGE_SIZE,
+    ArmChoice,
+)
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .errors import ConfigError, MachineError
@@ -190,8 +196,8 @@ def record(
     episodes: int = 1,
     seed: int = 0,
     fps: int = 25,
-    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist"),
-    image_size: tuple[int, int] = (224, 224),
+    cameras: tuple[str, ...] = RECORD_CAMERAS,
+    image_size: tuple[int, int] = RECORD_IMAGE_SIZE,
     variation: str = DEFAULT_VARIATION,
     randomize: tuple[str, ...] = (),
     workers: int = 1,

@@ -23,6 +23,11 @@ VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
+# What a recording films by default, and at what size (height, width): lerobot's plugin
+# evaluates with the same, so a default recording's checkpoint needs no more flags.
+RECORD_CAMERAS: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
+RECORD_IMAGE_SIZE = (224, 224)
+RECORD_FPS = 25
 # The first seed an evaluation scores (recordings start at 0: the two never overlap).
 EVAL_FIRST_SEED = 100_000
 # The Gymnasium ids pyramid_sim registers when imported: its own keys, and lerobot's.
@@ -35,6 +40,9 @@ __all__ = [
     "LEROBOT_ENV_ID",
     "DEFAULT_VARIATION",
     "EVAL_FIRST_SEED",
+    "RECORD_CAMERAS",
+    "RECORD_FPS",
+    "RECORD_IMAGE_SIZE",
     "ARMS",
     "ARM_CHOICES",
     "BACKENDS",

@@ -68,7 +68,9 @@ def test_the_robots_limits_reach_the_generator():
     )
     assert np.all(limits.speed[:joints] < np.array(left.velocity_limits))
     gap = joints  # the fingers open faster than they close
-    assert limits.speed[gap] > limits.falling[gap] == pytest.approx(2 * 2 * panda.finger_stroke / 0.35)
+    assert (
+        limits.speed[gap] > limits.falling[gap] == pytest.approx(2 * 2 * panda.finger_stroke / 0.35)
+    )
 
 
 @pytest.mark.parametrize("field", ["speed", "falling", "acceleration", "jerk"])

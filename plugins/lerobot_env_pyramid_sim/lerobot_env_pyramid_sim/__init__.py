@@ -16,6 +16,7 @@ from lerobot.envs.configs import EnvConfig
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 import pyramid_sim
+from pyramid_sim.choices import DEFAULT_VARIATION, RECORD_CAMERAS, RECORD_FPS, RECORD_IMAGE_SIZE
 from pyramid_sim.robots import robot
 
 SPARE_BRICKS = pyramid_sim.SimConfig().spare_bricks  # in the magazine beside the structure's
@@ -30,12 +31,14 @@ class PyramidSimEnv(EnvConfig):
     task: str | None = "pyramid-even"
     layers: int = 1
     robot: str = "panda"
-    variation: str = "layout"
-    fps: int = 25
+    # A default recording's: a checkpoint trained on one evaluates with no more flags (a
+    # state-only one: --env.cameras='[]').
+    variation: str = DEFAULT_VARIATION
+    fps: int = RECORD_FPS
     episode_length: int = 2250  # 90 s at 25 fps: 30 s a brick and 30 s more for two bricks
-    cameras: tuple[str, ...] = ()  # as `record --cameras`: overview, front, top, *_wrist
-    observation_height: int = 224
-    observation_width: int = 224
+    cameras: tuple[str, ...] = RECORD_CAMERAS  # as `record --cameras`
+    observation_height: int = RECORD_IMAGE_SIZE[0]
+    observation_width: int = RECORD_IMAGE_SIZE[1]
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 

@@ -15,9 +15,6 @@ from .poses import Pose
 from .primitives import Step, StepKind
 from .trajectory import Path, plan_path
 
-QUICK_RELEASE = 0.25  # of the close time, a closed loop's release opens the fingers in
-
-
 @dataclass
 class ArmRunner:
     arm: Arm
@@ -131,14 +128,13 @@ class ArmRunner:
                 if ik_error() <= self.config.motion.position_tolerance:
                     self._opening = self._t - dt  # the ramp's first share on this tick
             since = 0.0 if self._opening is None else self._t - self._opening
-            opening_time = grip.close_time * (QUICK_RELEASE if self.let_go_at_once else 1.0)
-            ramp = min(1.0, since / opening_time)
+            ramp = min(1.0, since / grip.close_time)
             start = max(self._gap_from, self.squeeze_gap)
             if self.let_go_at_once:  # the squeeze gone at once, the pads off slowly
                 start = max(start, self.contact_gap)
             self.gap = start + (self.open_gap - start) * ramp if ramp > 0 else self._gap_from
             # Done once the fingers are open: no force has to build, unlike a grip's.
-            finished = self._opening is not None and since >= opening_time
+            finished = self._opening is not None and since >= grip.close_time
         if not finished:
             return None
         self.steps.pop(0)

@@ -25,11 +25,12 @@ import mink
 import numpy as np
 
 from ..choices import ArmChoice
+from ..config import SimConfig
 from ..errors import ConfigError
 from ..options import resolve
 from ..output.judge import judge
 from ..physics.loop import BuildLoop
-from ..physics.motion_generator import MotionGenerator, motion_limits
+from ..physics.motion_generator import arm_motion
 from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
@@ -46,6 +47,8 @@ from .spaces import checked_action, goals, joint_space, observation_space, rende
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
 ACTION_MODES = ("joint", "ee")
+OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
+       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints")  # fmt: skip
 
 
 def check_modes(action_mode: str, render_mode: str | None) -> None:
@@ -58,7 +61,7 @@ def check_modes(action_mode: str, render_mode: str | None) -> None:
 
 class BuildEnv(gymnasium.Env):
     """Two arms build `structure`; keywords as `pyramid_sim.build` takes them, and the
-    environment's own (see the module's docstring and docs/learning.md)."""
+    environment's own (the module's docstring, docs/learning.md)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
 
@@ -81,13 +84,10 @@ class BuildEnv(gymnasium.Env):
         footprints: bool = True,
         **options: Any,
     ) -> None:
-        own = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
-               "camera_name", "cameras", "image_size", "randomize", "action_mode",
-               "footprints")  # fmt: skip
         check_modes(action_mode, render_mode)
         self.action_mode, self.render_mode = action_mode, render_mode
         options = dict(options)
-        self.config, spec = resolve(structure, options.pop("config", None), options, own=own)
+        self.config, spec = resolve(structure, options.pop("config", None), options, own=OWN)
         robot = self.config.robot_description
         self.variation = var.check_level(variation)
         self.randomize = var.randomized(variation, rnd.check_parts(tuple(randomize)))
@@ -101,7 +101,7 @@ class BuildEnv(gymnasium.Env):
         self._camera_ids = lay.camera_names(robot)
         self.structure_spec, self.arms = spec, arms
         self.limit_commands = bool(limit_commands)
-        self.footprints = bool(footprints)  # the targets marked on the table, for the cameras
+        self.footprints = bool(footprints)  # the targets drawn on the table for the cameras
         self.seed_of_episode = self.config.seed
         self._renderer: Any = None
         self._eyes: Any = None  # the cameras' renderer, made at the first observation
@@ -111,15 +111,8 @@ class BuildEnv(gymnasium.Env):
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
         self.lerobot_units = lerobot_units(robot, self.layout.names)
-        motion = self.config.hand_motion
-        floor = self.config.layout.table_top_z + self.config.brick.height / 2 + robot.grasp_height
-        self.ee = EndEffectorControl(
-            self.layout, motion.speed, motion.turn_rate, motion.control_dt, self.control_steps, floor
-        )  # fmt: skip
-        self.generator = MotionGenerator(
-            motion_limits(robot, self.config.gripper.close_time), self.config.motion.control_dt
-        )
-        self.lag_peak = 0.0  # the largest distance of the command from its target (rad or m)
+        self.ee = end_effector(self.config, self.layout, self.control_steps)
+        self.generator = arm_motion(self.config)
         self.action_space = self.ee.space if action_mode == "ee" else joint_space(self.layout)
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
@@ -144,11 +137,10 @@ class BuildEnv(gymnasium.Env):
         loop = self._loop
         loop.feed_spot()  # the first brick on the spot before the first observation
         self.placing = PlacementWatch(loop)
-        self._goals = goals(self.plan)
+        self.goals = goals(self.plan)  # the targets' poses, build order
         held = loop.data.ctrl[loop.handles.ctrl_index].copy()
         self._command = (held, held)  # the last target, and where the ramp left the command
         self.generator.reset(held)
-        self.lag_peak = 0.0
         self.ee.reset(loop)
         self._expert.reset()
         self._steps = 0
@@ -196,7 +188,7 @@ class BuildEnv(gymnasium.Env):
             if failure is not None or self.placing.count == len(self.plan.bricks):
                 break
         if ramp is None and self.action_mode == "joint":
-            self.lag_peak = max(self.lag_peak, self.generator.lag())
+            self.generator.lag()  # its peak is the episode's
         success = self.placing.count == len(self.plan.bricks)
         # The build's time limit ends an episode as truncated, whatever stopped the loop there.
         truncated = not success and loop.data.time > self.config.max_sim_time
@@ -223,7 +215,7 @@ class BuildEnv(gymnasium.Env):
             height, width = self.render_size
             self._renderer = renderer(self._loop.model, width, height)
         self._renderer.update_scene(self._loop.data, self._camera_ids[self.camera_name])
-        self._mark(self._renderer.scene)
+        draw_goals(self, self._renderer.scene)
         return self._renderer.render()
 
     def close(self) -> None:
@@ -248,7 +240,7 @@ class BuildEnv(gymnasium.Env):
         observed: dict[str, Any] = {
             "state": lay.state(loop.data, loop.handles, self._state).copy(),
             "bricks": loop.data.qpos[self._brick_q],
-            "goals": self._goals.copy(),
+            "goals": self.goals.copy(),
         }
         if self.cameras:
             observed["images"] = self.images(self.cameras)
@@ -262,19 +254,30 @@ class BuildEnv(gymnasium.Env):
         images = {}
         for camera in cameras:
             self._eyes.update_scene(self._loop.data, self._camera_ids[camera])
-            self._mark(self._eyes.scene)
+            draw_goals(self, self._eyes.scene)
             images[camera] = self._eyes.render()
         return images
-
-    def _mark(self, scene: Any) -> None:
-        if self.footprints:
-            brick, top = self._loop.config.brick, self._loop.config.layout.table_top_z
-            mark(scene, self._goals, brick.length, brick.width, top)
 
     @property
     def loop(self) -> BuildLoop:
         """The build this episode runs (its parts, its expert's state)."""
         return self._loop
+
+
+def end_effector(config: SimConfig, layout: lay.Layout, steps: int) -> EndEffectorControl:
+    """The `ee` action mode's controller for the robot and settings."""
+    motion, robot = config.hand_motion, config.robot_description
+    floor = config.layout.table_top_z + config.brick.height / 2 + robot.grasp_height
+    return EndEffectorControl(
+        layout, motion.speed, motion.turn_rate, motion.control_dt, steps, floor
+    )
+
+
+def draw_goals(env: BuildEnv, scene: Any) -> None:
+    """The targets' footprint on the table of a rendered scene, if the environment marks it."""
+    if env.footprints:
+        config = env.loop.config
+        mark(scene, env.goals, config.brick.length, config.brick.width, config.layout.table_top_z)
 
 
 def episode_info(env: BuildEnv, failure: str | None, success: bool | None) -> dict[str, Any]:
@@ -293,7 +296,7 @@ def episode_info(env: BuildEnv, failure: str | None, success: bool | None) -> di
         "bricks_placed": env.placing.count,
         "failure": failure,
         "is_success": bool(success),
-        "command_lag": env.lag_peak,
+        "command_lag": env.generator.peak_lag,
         "seed": env.seed_of_episode,
         "randomization": deepcopy(env.drawn),
         "result": result,

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..physics.tool_feedback import close_loop, take_over
+
 if TYPE_CHECKING:
     from ..physics.loop import BuildLoop
     from .env import BuildEnv
@@ -33,10 +35,10 @@ class ExpertPolicy:
         """A new episode (also noticed by itself when the environment was reset)."""
         self._loop = self.env.loop
         if self.env.limit_commands:  # with the motion generator between it and the servos
-            self._loop.close_loop()
+            close_loop(self._loop)
         self._done = False
         self._asked = -1
-        self._last: np.ndarray | None = None
+        self._last = None
 
     def act(self, observation: Any = None) -> np.ndarray:
         """The action for the environment's next step (the observation is not needed: the
@@ -46,7 +48,7 @@ class ExpertPolicy:
             self.reset()
         loop = env.loop
         if env.steps_taken != self._asked + 1:
-            loop.resync()  # somebody else drove the arms: on from where they are
+            take_over(loop)  # somebody else drove the arms: on from where they are
         self._asked = env.steps_taken
         if env.action_mode == "ee":
             return self._end_effector(loop)

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import ConfigError
 
-KINDS = ("noise", "hold", "offset", "delay")
+KINDS = ("none", "noise", "hold", "offset", "delay")
 OFFSET_PERIOD = 25  # steps between an offset's draws: a second at 25 fps
 
 
@@ -38,6 +38,8 @@ class Perturbation:
 
     @property
     def text(self) -> str:
+        if self.kind == "none":
+            return "none"
         unit = " mrad" if self.kind in ("noise", "offset") else " steps"
         value = self.amount * 1000 if unit == " mrad" else self.amount
         return f"{self.kind} {value:g}{unit}"
@@ -58,6 +60,8 @@ class Perturber:
     def __call__(self, action: np.ndarray) -> np.ndarray:
         kind, amount, k = self.p.kind, self.p.amount, self.steps
         self.steps += 1
+        if kind == "none":
+            return action
         if kind == "noise":
             return action + self.joints * self.random.normal(0.0, amount, len(action))
         if kind == "offset":

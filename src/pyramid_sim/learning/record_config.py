@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..choices import RECORD_CAMERAS, RECORD_IMAGE_SIZE
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
@@ -24,8 +25,8 @@ class RecordConfig:
     episodes: int = 1
     first_seed: int = 0
     fps: int = 25
-    cameras: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
-    image_size: tuple[int, int] = (224, 224)
+    cameras: tuple[str, ...] = RECORD_CAMERAS
+    image_size: tuple[int, int] = RECORD_IMAGE_SIZE
     variation: str = DEFAULT_LEVEL  # how episodes differ (learning/variation.py)
     randomize: tuple[str, ...] = ()  # parts of learning/randomize.py, drawn per episode
     limit_commands: bool = True  # the environment's: commands through the motion generator

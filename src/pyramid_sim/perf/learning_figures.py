@@ -9,7 +9,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..choices import RobotName
+from ..choices import RECORD_CAMERAS, RECORD_FPS, RECORD_IMAGE_SIZE, RobotName
 from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..learning.env import BuildEnv
@@ -17,9 +17,7 @@ from ..learning.record import RecordConfig, record
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 
-RECORD_CAMERAS = ("overview", "left_wrist", "right_wrist")
-RECORD_SIZE = (224, 224)
-RECORD_FPS = 25
+RECORD_SIZE = RECORD_IMAGE_SIZE
 
 
 def learning_figures(spec: StructureSpec, robot: RobotName) -> dict[str, Any]:

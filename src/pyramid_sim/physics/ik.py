@@ -16,7 +16,7 @@ from ..config import SimConfig
 from ..core.poses import Pose, tcp_quaternion, yaw_of
 from ..errors import UnreachableError
 from . import names as c
-from .handles import dof_addresses, qpos_addresses
+from .handles import qpos_addresses
 from .ik_plan import SpanPlan, ramp_split, span_gain
 from .ik_qp import BrakingCollisionLimit, IKProblem, solve_smooth, solver_scratch
 from .ik_terms import (
@@ -48,7 +48,6 @@ class DualArmIK:
         self.configuration = mink.Configuration(self.model)
         self.dt = config.motion.control_dt
         self.qadr = {arm: qpos_addresses(self.model, arms[arm].joints) for arm in c.ARMS}
-        self.dofadr = {arm: dof_addresses(self.model, arms[arm].joints) for arm in c.ARMS}
         self.tasks = {arm: frame_task(arms[arm].tcp_site) for arm in c.ARMS}
         # The same gain, so frame and posture tasks balance where they did at gain 1.
         cost = robot.posture_cost if posture_cost is None else posture_cost
@@ -102,13 +101,6 @@ class DualArmIK:
                 )
             )
             self._targets.pop(arm, None)
-
-    def take_over(self, q: np.ndarray, velocity: np.ndarray) -> None:
-        """Stand at `q` moving at `velocity` (the arms as they are), targets kept: the next
-        step plans from there."""
-        self._plan = None
-        self.configuration.update(q)
-        self.velocity = velocity.copy()
 
     def arm_q(self, arm: Arm) -> np.ndarray:
         return self.configuration.q[self.qadr[arm]].copy()

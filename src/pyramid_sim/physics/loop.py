@@ -48,8 +48,9 @@ class BuildLoop:
         robot = config.robot_description
         self._sag = None if robot.gravity_compensation else SagOffset(self.ik.model, robot)
         self.ik_rate = IKRate(self.ik, self.dispatch, config)
-        self._ik_error = {a: self._error_of(a) for a in c.ARMS}
-        self._feedback: ToolFeedback | None = None  # the expert's loop, once closed
+        # how far each arm is from where its move ends: the IK's error, or the measured one
+        self.arrival = {a: self._error_of(a) for a in c.ARMS}
+        self.feedback: ToolFeedback | None = None  # the expert's loop, once closed
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
 
@@ -67,37 +68,6 @@ class BuildLoop:
     def _error_of(self, arm: Arm) -> Callable[[], float]:
         return lambda: self.ik.error(arm)[0]
 
-    def close_loop(self) -> None:
-        """Judge each move done by where the arm's tool is, not where the IK has it, and
-        work a steady error away (`ToolFeedback`): with something between the expert's
-        commands and the servos (a motion generator, a policy's noise), a grip starts only
-        once the hand is really around the brick, and a brick is let go where it belongs, at
-        once."""
-        feedback = ToolFeedback(
-            self.data,
-            self.handles.tcp_site,
-            self.dispatch,
-            self.custody,
-            self.plan,
-            self._ik_error,
-            self.config.motion.control_dt,
-        )
-        self.ik_rate.aim = feedback.aim
-        for runner in self.dispatch.runners.values():
-            runner.let_go_at_once = True  # a brick set right is let go before a jolt moves it
-        self._ik_error = {a: feedback.error_of(a) for a in c.ARMS}
-        self._feedback = feedback
-
-    def resync(self) -> None:
-        """The IK taken to where the arms are (their joints and speeds), as the expert takes
-        over from whoever drove them: it plans from there."""
-        ik, h = self.ik, self.handles
-        q, velocity = ik.configuration.q.copy(), np.zeros(ik.model.nv)
-        for a in c.ARMS:
-            q[ik.qadr[a]] = self.data.qpos[h.arm_qpos[a]]
-            velocity[ik.dofadr[a]] = self.data.qvel[h.arm_dofs[a]]
-        ik.take_over(q, velocity)
-
     # --- one control step, in parts --------------------------------------------------------
     def feed_spot(self) -> None:
         """The feeder's turn, whoever drives the arms: a brick taken off the spot frees it, and
@@ -111,7 +81,7 @@ class BuildLoop:
     def _drive_arms(self) -> None:
         """Advance each arm's primitive (the IK's error asked only as a move ends)."""
         for a in c.ARMS:
-            self.dispatch.advance(a, self._ik_error[a], self._on_step_done)
+            self.dispatch.advance(a, self.arrival[a], self._on_step_done)
 
     def _on_step_done(self, arm: Arm, step: Step, task: Task | None) -> None:
         self.last_progress = self.data.time
@@ -208,8 +178,8 @@ class BuildLoop:
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
             return False
-        if self._feedback is not None:
-            self._feedback.update()
+        if self.feedback is not None:
+            self.feedback.update()
         self._drive_arms()
         return True
 

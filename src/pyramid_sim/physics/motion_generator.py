@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from ruckig import InputParameter, OutputParameter, Result, Ruckig, Synchronization
 
+from ..config import SimConfig
 from ..robots import RobotDescription
 from .ik_terms import ARM_VELOCITY_MARGIN, VELOCITY_MARGIN
 
@@ -60,8 +61,10 @@ def motion_limits(robot: RobotDescription, close_time: float) -> MotionLimits:
         falling.append(GRIPPER_SPEED * stroke / close_time)
         acceleration.append(speed[-1] / JERK_TIME)
         fingers.append(True)
-    a = np.array(acceleration)
-    return MotionLimits(np.array(speed), np.array(falling), a, a / JERK_TIME, np.array(fingers))
+    most = np.array(acceleration)
+    return MotionLimits(
+        np.array(speed), np.array(falling), most, most / JERK_TIME, np.array(fingers)
+    )
 
 
 class MotionGenerator:
@@ -87,12 +90,14 @@ class MotionGenerator:
         self.position = np.zeros(n)
         self.velocity = np.zeros(n)
         self._target = np.zeros(n)
+        self.peak_lag = 0.0  # the largest `lag()` asked since the reset
 
     def reset(self, position: np.ndarray) -> None:
         """At rest at `position` (a new episode's command)."""
         self.position = np.asarray(position, dtype=np.float64).copy()
         self.velocity = np.zeros_like(self.position)
         self._target = self.position.copy()
+        self.peak_lag = 0.0
         zeros = [0.0] * len(self.position)
         self._input.current_position = self.position.tolist()
         self._input.current_velocity = zeros
@@ -117,5 +122,14 @@ class MotionGenerator:
         return self.position
 
     def lag(self) -> float:
-        """How far the command is from its target now, the largest entry (rad or m)."""
-        return float(np.max(np.abs(self._target - self.position)))
+        """How far the command is from its target now, the largest entry (rad or m); kept in
+        `peak_lag` if the largest yet."""
+        lag = float(np.max(np.abs(self._target - self.position)))
+        self.peak_lag = max(self.peak_lag, lag)
+        return lag
+
+
+def arm_motion(config: SimConfig) -> MotionGenerator:
+    """The motion generator of the settings' robot, stepped at the control rate."""
+    limits = motion_limits(config.robot_description, config.gripper.close_time)
+    return MotionGenerator(limits, config.motion.control_dt)

@@ -8,16 +8,16 @@ hand, comes to where it belongs."""
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
-import mujoco
 import numpy as np
 
 from ..choices import Arm
-from ..core.plan import Plan
 from ..core.poses import Pose
 from . import names as c
-from .custody import BrickCustody
-from .dispatch import ArmDispatch
+
+if TYPE_CHECKING:
+    from .loop import BuildLoop
 
 TIME_CONSTANT = 0.2  # s of the integral: slower than the motion generator and servos' lag
 CAP = 0.02  # m: the most the aim is shifted, each axis
@@ -28,27 +28,19 @@ REST_SPEED = 0.01  # m/s: a tool slower than this has settled; a lag still closi
 
 class ToolFeedback:
     """Each arm's aim shift (`aim`) and the measured error a move's end is judged by
-    (`error_of`), read from `data` at the arms' tool sites."""
+    (`error_of`), read from the loop's data at the arms' tool sites and carried bricks."""
 
-    def __init__(
-        self,
-        data: mujoco.MjData,
-        sites: dict[Arm, int],
-        dispatch: ArmDispatch,
-        custody: BrickCustody,
-        plan: Plan,
-        ik_error: dict[Arm, Callable[[], float]],
-        dt: float,
-    ) -> None:
-        self.data, self.sites, self.dispatch, self.dt = data, sites, dispatch, dt
-        self.custody = custody
-        self._targets = {b.index: b.target.pose for b in plan.bricks}
-        self._ik_error = ik_error
-        self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
-        self._was = {a: data.site_xpos[sites[a]].copy() for a in c.ARMS}
+    def __init__(self, loop: BuildLoop) -> None:
+        self.data, self.sites = loop.data, loop.handles.tcp_site
+        self.dispatch, self.custody = loop.dispatch, loop.custody
+        self.dt = loop.config.motion.control_dt
+        self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
+        self._ik_error = {a: (lambda arm=a: loop.ik.error(arm)[0]) for a in c.ARMS}
         self.bias = {a: np.zeros(3) for a in c.ARMS}
         self._waited = {a: 0.0 for a in c.ARMS}
         self._step: dict[Arm, object] = {a: None for a in c.ARMS}
+        self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
+        self._was = {a: self.data.site_xpos[self.sites[a]].copy() for a in c.ARMS}
 
     def aim(self, arm: Arm, pose: Pose) -> Pose:
         """Where the IK aims for the arm's tool to come to `pose`."""
@@ -102,3 +94,19 @@ class ToolFeedback:
             return float(np.linalg.norm(self._miss(arm)))
 
         return error
+
+
+def close_loop(loop: BuildLoop) -> None:
+    """Close the expert's loop in `loop` on the measured tool and brick: its moves' ends
+    judged and its aim shifted by a `ToolFeedback`, its releases letting go at once."""
+    loop.feedback = ToolFeedback(loop)
+    loop.ik_rate.aim = loop.feedback.aim
+    loop.arrival = {a: loop.feedback.error_of(a) for a in c.ARMS}
+    for runner in loop.dispatch.runners.values():
+        runner.let_go_at_once = True  # a brick set right is let go before a jolt moves it
+
+
+def take_over(loop: BuildLoop) -> None:
+    """The IK taken to where the arms are, as the expert takes over from whoever drove them:
+    it plans from there."""
+    loop.ik.reset(*(loop.data.qpos[loop.handles.arm_qpos[a]] for a in c.ARMS))
