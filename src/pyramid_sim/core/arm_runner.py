@@ -15,6 +15,7 @@ from .poses import Pose
 from .primitives import Step, StepKind
 from .trajectory import Path, plan_path
 
+
 @dataclass
 class ArmRunner:
     arm: Arm

@@ -35,7 +35,6 @@ from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
 from . import variation as var
-from .command_limits import spline_ramp
 from .ee_control import EndEffectorControl
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
@@ -43,6 +42,7 @@ from .footprints import mark
 from .lerobot_units import lerobot_units
 from .outcome import PlacementWatch, episode_failure
 from .spaces import checked_action, goals, joint_space, observation_space, renderer
+from .target_spline import spline_ramp
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
