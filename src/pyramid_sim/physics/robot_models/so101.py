@@ -39,6 +39,8 @@ CAMERA_AT, CAMERA_LOOKS_AT, CAMERA_FOVY = (0.06, 0.0, -0.05), (0.0, 0.0, 0.01), 
 def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) -> mujoco.MjSpec:
     """One SO-101 with the changes listed in this module's docstring, its names unprefixed."""
     spec = mujoco.MjSpec.from_file(str(XML))
+    for mesh in spec.meshes:  # absolute, as `scene --out x.xml` copies them (scene_files.py)
+        mesh.file = str(XML.parent / spec.meshdir / mesh.file)
     for actuator in list(spec.actuators):
         spec.delete(actuator)
     hand, jaw = spec.body(HAND), spec.body(JAW)
