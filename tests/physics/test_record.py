@@ -172,6 +172,26 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
 
 
 @pytest.mark.parametrize(
+    "changed, words",
+    [
+        ({"seed": 7}, "first_seed 0, this run 7"),
+        ({"friction": 0.5}, "options.config.brick.friction 1.0, this run 0.5"),
+    ],
+)
+def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
+    dataset, tmp_path, changed, words
+):
+    import shutil
+
+    root, _ = dataset
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    with pytest.raises(pyramid_sim.ConfigError, match="another recording") as refused:
+        _record(copy, 3, **changed)
+    assert f"(episode 0 has {words});" in str(refused.value)
+
+
+@pytest.mark.parametrize(
     "argv, words",
     [
         (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
