@@ -46,6 +46,16 @@ CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limi
 ACTION_MODES = ("joint", "ee")
 
 
+def check_reset_options(options: Any) -> None:
+    """ConfigError for reset options: the environment takes none (an episode is its seed)."""
+    if options is not None and options != {}:
+        shown = repr(options) if len(repr(options)) <= 60 else f"{repr(options)[:57]}..."
+        raise ConfigError(
+            f"reset options: {shown}; accepted None or {{}} (no option keys: an episode is "
+            "drawn from its seed alone)"
+        )
+
+
 def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
@@ -120,6 +130,7 @@ class BuildEnv(gymnasium.Env):
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
         self._start_episode()
+        self._reset_needed = True  # Gymnasium's contract: reset before the first step
 
     def _new_loop(self, seed: int) -> BuildLoop:
         """The episode of `seed`, on a new compiled scene if its renderers' is gone."""
@@ -147,16 +158,24 @@ class BuildEnv(gymnasium.Env):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         """A new build from the start: the episode of `seed`, or without one the next seed of
-        the environment's random stream."""
+        the environment's random stream. It takes no options (None or {})."""
+        check_reset_options(options)
         super().reset(seed=seed)
         episode = seed if seed is not None else int(self.np_random.integers(2**32))
         lay.check_seed(episode)
         self.seed_of_episode = episode
         self._loop = self._new_loop(episode)
         self._start_episode()
+        self._reset_needed = False
         return self._observe(), episode_info(self, None, None)
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        if self._reset_needed or self.ended:
+            raise gymnasium.error.ResetNeeded(
+                "step: the episode has ended; call reset() to start the next"
+                if self.ended
+                else "step: before the first reset(); call reset() first"
+            )
         names = self.ee.names if self.action_mode == "ee" else self.layout.names
         target = checked_action(action, self._low, self._high, names)
         if self.limit_commands and self.action_mode == "joint":
