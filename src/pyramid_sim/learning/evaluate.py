@@ -18,7 +18,7 @@ from gymnasium.wrappers import TimeLimit
 
 from ..choices import EVAL_FIRST_SEED
 from ..config import MotionConfig
-from ..errors import ConfigError
+from ..errors import ActionError, ConfigError, PolicyError
 from ..output.files import atomic_path, write_json_atomic
 from ..params import EPISODES, MAX_STEPS
 from ..version import __version__
@@ -114,12 +114,17 @@ def versions() -> dict[str, str]:
 
 def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str, Any]:
     """One episode of `policy` from `reset(seed=seed)` in `env` (a BuildEnv, wrapped or
-    not): its row. An episode cut by a step limit fails for it."""
+    not): its row. An episode cut by a step limit fails for it. PolicyError if the policy's
+    reset() or act() raises, or act() gives an action the environment does not take."""
     observation, _ = env.reset(seed=seed)
-    policy.reset()
+    _policy_call(policy.reset, "reset()")
     steps, start = 0, time.perf_counter()
     while True:
-        observation, _, terminated, truncated, info = env.step(policy.act(observation))
+        action = _policy_call(policy.act, "act()", observation)
+        try:
+            observation, _, terminated, truncated, info = env.step(action)
+        except ActionError as err:
+            raise PolicyError(f"act() gave an {err}") from err
         steps += 1
         if film is not None:
             film(env.render())
@@ -160,10 +165,17 @@ def evaluate(
     try:
         for i in range(config.episodes):
             seed = config.first_seed + i
-            if i < config.videos and out is not None:
-                rows.append(_filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps))
-            else:
-                rows.append(run_episode(env, policy, seed))
+            try:
+                if i < config.videos and out is not None:
+                    film = out / f"episode_{seed}.mp4"
+                    rows.append(_filmed(env, policy, seed, film, config.fps))
+                else:
+                    rows.append(run_episode(env, policy, seed))
+            except PolicyError as err:  # the user's code: one line, no evaluation.json
+                raise PolicyError(
+                    f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed "
+                    f"{seed}): {err}"
+                ) from err.__cause__
             if on_episode is not None:
                 on_episode(rows[-1])
     finally:
@@ -213,6 +225,14 @@ def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str,
     with atomic_path(path) as tmp:
         film(tmp)
     return rows[0]
+
+
+def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
+    """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
+    try:
+        return method(*args)
+    except Exception as err:
+        raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err
 
 
 def _plain(options: dict[str, Any]) -> dict[str, Any]:
