@@ -6,6 +6,7 @@ Every bad input ends in one line on stderr and exit status 2, before anything is
 
 from __future__ import annotations
 
+import ctypes
 import signal
 import sys
 import threading
@@ -114,6 +115,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:  # Ctrl-C: partial files are already gone; no traceback
         print("pyramid-sim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except ctypes.ArgumentError as err:
+        if not interrupted(err):
+            raise
+        print("pyramid-sim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def interrupted(err: ctypes.ArgumentError) -> bool:
+    """Whether ctypes' error wraps a Ctrl-C: one that lands while a frame renders arrives as
+    "argument 1: KeyboardInterrupt" from the OpenGL binding's argument conversion."""
+    cause = err.__cause__ or err.__context__
+    return isinstance(cause, KeyboardInterrupt) or "KeyboardInterrupt" in str(err)
 
 
 __all__ = ["main", "make_parser"]
