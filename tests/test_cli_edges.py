@@ -39,6 +39,18 @@ def test_plan_refuses_what_build_would(capsys, refused):
 
 
 @pytest.mark.physics
+def test_scene_refuses_what_plan_and_build_would_writing_nothing(tmp_path, refused):
+    """One rule for what a size may be, in every command: the SO-101 pair's 12-layer
+    pyramid is out of its reach, so no 81-brick model is written."""
+    out = tmp_path / "s.xml"
+    argv = ["--robot", "so101", "--structure", "pyramid", "--layers", "12"]
+    plan_err = refused(["plan", *argv])
+    scene_err = refused(["scene", *argv, "--out", str(out)])
+    assert "largest reachable is layers 3" in scene_err
+    assert scene_err == plan_err and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.physics
 def test_the_size_suggested_for_an_unreachable_wall_is_whole_and_accepted(capsys, refused):
     # A wall is sized by its width at three courses: the bricks asked for change with it.
     err = refused(["plan", "--structure", "wall", "--wall-width", "7", "--bricks", "22"])

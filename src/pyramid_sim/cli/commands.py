@@ -164,11 +164,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def cmd_scene(args: argparse.Namespace) -> int:
-    """The compiled model a build of these options runs, with its bricks parked, to a file."""
-    from ..core.plan import make_plan
-
+    """The compiled model a build of these options runs, with its bricks parked, to a file:
+    of a size `build` takes (every pose checked by IK first, as `plan` and `build` do)."""
     config = config_from_args(args)
-    plan = make_plan(spec_from_args(args, config), config, args.arms)
+    spec = spec_from_args(args, config)
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
@@ -177,7 +176,9 @@ def cmd_scene(args: argparse.Namespace) -> int:
 
         check_mesh_folder(args.out)
     from ..output.scene_files import write_scene
+    from ..physics.reach import prepare
 
+    plan = prepare(spec, config, args.arms)  # out of reach: refused, as `plan` refuses it
     with removed_if_failed([args.out.parent]):
         model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
     files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
