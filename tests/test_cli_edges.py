@@ -277,3 +277,12 @@ def test_help_shows_every_default_and_the_choices():
 
 def _help_of(parser) -> dict:
     return {a.option_strings[0]: a.help for a in parser._actions if a.option_strings}
+
+
+@pytest.mark.parametrize("command", ["record", "evaluate"])
+def test_the_seed_of_record_and_evaluate_is_the_first_episodes(command, capsys):
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--seed SEED the first episode's; episode i is seed + i" in text
+    assert "spawn jitter (default" not in text
