@@ -56,6 +56,16 @@ def check_reset_options(options: Any) -> None:
         )
 
 
+def require_live_episode(reset_needed: bool, ended: bool) -> None:
+    """Gymnasium's ResetNeeded for a step before the first reset or after the episode ended."""
+    if reset_needed or ended:
+        raise gymnasium.error.ResetNeeded(
+            "step: the episode has ended; call reset() to start the next"
+            if ended
+            else "step: before the first reset(); call reset() first"
+        )
+
+
 def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
@@ -69,6 +79,7 @@ class BuildEnv(gymnasium.Env):
     environment's own (see the module's docstring and docs/learning.md)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
+    _reset_needed = True  # Gymnasium's contract: reset before the first step
 
     def __init__(
         self,
@@ -130,7 +141,6 @@ class BuildEnv(gymnasium.Env):
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
         self._start_episode()
-        self._reset_needed = True  # Gymnasium's contract: reset before the first step
 
     def _new_loop(self, seed: int) -> BuildLoop:
         """The episode of `seed`, on a new compiled scene if its renderers' is gone."""
@@ -170,12 +180,7 @@ class BuildEnv(gymnasium.Env):
         return self._observe(), episode_info(self, None, None)
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
-        if self._reset_needed or self.ended:
-            raise gymnasium.error.ResetNeeded(
-                "step: the episode has ended; call reset() to start the next"
-                if self.ended
-                else "step: before the first reset(); call reset() first"
-            )
+        require_live_episode(self._reset_needed, self.ended)
         names = self.ee.names if self.action_mode == "ee" else self.layout.names
         target = checked_action(action, self._low, self._high, names)
         if self.limit_commands and self.action_mode == "joint":

@@ -164,18 +164,7 @@ def evaluate(
     rows = []
     try:
         for i in range(config.episodes):
-            seed = config.first_seed + i
-            try:
-                if i < config.videos and out is not None:
-                    film = out / f"episode_{seed}.mp4"
-                    rows.append(_filmed(env, policy, seed, film, config.fps))
-                else:
-                    rows.append(run_episode(env, policy, seed))
-            except PolicyError as err:  # the user's code: one line, no evaluation.json
-                raise PolicyError(
-                    f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed "
-                    f"{seed}): {err}"
-                ) from err.__cause__
+            rows.append(_episode(env, policy, config, i, out))
             if on_episode is not None:
                 on_episode(rows[-1])
     finally:
@@ -208,6 +197,20 @@ def evaluate(
         path = out / "evaluation.json"
         write_json_atomic(path, scores)
     return Evaluation(path, scores)
+
+
+def _episode(env: Any, policy: Any, config: EvaluateConfig, i: int, out: Path | None) -> dict:
+    """Episode `i`'s row, filmed if among the first `videos`; a PolicyError names the policy,
+    the episode and its seed (the user's code: one line, and no evaluation.json)."""
+    seed = config.first_seed + i
+    try:
+        if i < config.videos and out is not None:
+            return _filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps)
+        return run_episode(env, policy, seed)
+    except PolicyError as err:
+        raise PolicyError(
+            f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed {seed}): {err}"
+        ) from err.__cause__
 
 
 def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str, Any]:
