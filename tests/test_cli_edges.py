@@ -51,6 +51,16 @@ def test_scene_refuses_what_plan_and_build_would_writing_nothing(tmp_path, refus
 
 
 @pytest.mark.physics
+def test_a_size_whose_zone_reaches_under_a_waiting_arm_is_refused_up_front(refused):
+    """The SO-101 pair's 4-layer even pyramid is within reach of every pose, but its shared
+    zone covers the left arm's forearm at its clear pose: built, it failed `shared_zone` after
+    156 s with every brick placed. Refused before physics, naming why and what builds."""
+    err = refused(["plan", "--robot", "so101", "--structure", "pyramid-even", "--layers", "4"])
+    assert "the left arm waiting at its clear pose has its left/lower_arm inside the shared " in err
+    assert "the largest reachable is layers 3" in err
+
+
+@pytest.mark.physics
 def test_the_size_suggested_for_an_unreachable_wall_is_whole_and_accepted(capsys, refused):
     # A wall is sized by its width at three courses: the bricks asked for change with it.
     err = refused(["plan", "--structure", "wall", "--wall-width", "7", "--bricks", "22"])

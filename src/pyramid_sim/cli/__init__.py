@@ -83,9 +83,16 @@ def make_parser() -> a.Parser:
     reach.add_argument(
         "--arms",
         type=a.one_of("arms", arm_sets),
-        default="all",
+        default="both",
         metavar="|".join(arm_sets),
-        help="the arm set to check: both, left, right, or all three (default all)",
+        help="the arm set to check: both, left, right, or all three (default both, as a build)",
+    )
+    reach.add_argument(
+        "--any-layout",
+        action="store_true",
+        help="add the column 'both arms, any layout': the largest size within reach wherever "
+        "the learning environment's layout variation puts it (checked at its region's 16 "
+        "corners: ten times the IK work)",
     )
     return parser
 
