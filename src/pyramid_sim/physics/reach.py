@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from ..choices import Arm, ArmChoice
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
@@ -98,11 +100,17 @@ class ReachChecker:
 
     def check(self, plan: Plan) -> None:
         """Raise UnreachableError naming an arm that would wait inside a zone (`in_the_way`),
-        or the first pose of the plan the IK cannot reach."""
+        or a pose of the plan the IK cannot reach: the farthest from its arm's base first,
+        where a plan too large fails (its nearer poses are not solved for nothing)."""
         in_the_way = self.in_the_way(plan)
         if in_the_way is not None:
             raise UnreachableError(in_the_way)
-        for arm, what, pose in plan_poses(plan, self.config):
+        arms = self.config.robot_description.arms
+        poses = plan_poses(plan, self.config)
+        poses.sort(
+            key=lambda p: -float(np.linalg.norm(np.subtract(p[2].position, arms[p[0]].base)))
+        )
+        for arm, what, pose in poses:
             reason = self.why_not(arm, pose)
             if reason is not None:
                 raise UnreachableError(f"{what}: {reason}")
