@@ -113,6 +113,7 @@ def test_the_structures_place_and_the_feed_spot_vary_by_centimetres_across_seeds
     fixed.close()
 
 
+@pytest.mark.slow  # 120 episodes; the other tests here roll the expert out at each level once
 @pytest.mark.parametrize("variation", ["fixed", "layout", "full"])
 @pytest.mark.parametrize("structure", [("pyramid-even", 1), ("pyramid", 3)])
 def test_the_expert_builds_at_every_level_over_twenty_seeds(variation, structure):
