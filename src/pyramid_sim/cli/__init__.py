@@ -92,7 +92,7 @@ def make_parser() -> a.Parser:
         action="store_true",
         help="add the column 'both arms, any layout': the largest size within reach wherever "
         "the learning environment's layout variation puts it (checked at its region's 16 "
-        "corners: ten times the IK work)",
+        "corners: several times the IK work) (default: the arms' columns alone)",
     )
     return parser
 
