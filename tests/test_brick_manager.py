@@ -206,6 +206,11 @@ def _write(tmp_path, name, text):
         (
             "g.json",
             '[{"x": 0.7, "y": "inf", "z": 0.11}]',
+            "y 'inf' is a string; accepted a JSON number",  # JSON's numbers are numbers
+        ),
+        (
+            "g.csv",
+            "x,y,z\n0.7,inf,0.11\n",
             r"y inf is out of range; accepted \[-10, 10\] m",
         ),
     ],

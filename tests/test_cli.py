@@ -125,7 +125,7 @@ def test_plan_prints_every_structure_with_its_size_and_yaw(capsys):
 
 @pytest.mark.physics
 def test_reach_prints_the_largest_size_of_every_structure(capsys):
-    assert main(["reach", "--arms", "both"]) == 0
+    assert main(["reach", "--arms", "both", "--any-layout"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert (
         lines[-1].startswith("Checked by IK alone")
@@ -140,6 +140,17 @@ def test_reach_prints_the_largest_size_of_every_structure(capsys):
     # put it; the 6-brick pyramid the tests build over 20 layouts is within it
     assert all(int(anywhere) <= int(fixed) for fixed, anywhere in rows.values())
     assert int(rows["pyramid"][1]) >= 3 and int(rows["pyramid-even"][1]) >= 1
+
+
+@pytest.mark.physics
+def test_reach_leaves_the_layout_column_to_its_option_and_agrees_with_the_docs(capsys):
+    """Without --any-layout the table is the arms' alone (seconds, not a minute); the SO-101
+    pair's even pyramid stops at 3 layers, as docs/cli.md says and as builds."""
+    assert main(["reach", "--robot", "so101", "--arms", "both"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert lines[0].split()[-2:] == ["both", "arms"] and "any layout" not in lines[-1]
+    rows = {line.split()[0]: line.split()[-1] for line in lines[1:-1]}
+    assert rows["pyramid"] == rows["pyramid-even"] == "3"
 
 
 def _summary_of(capsys) -> str:

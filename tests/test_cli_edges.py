@@ -39,6 +39,28 @@ def test_plan_refuses_what_build_would(capsys, refused):
 
 
 @pytest.mark.physics
+def test_scene_refuses_what_plan_and_build_would_writing_nothing(tmp_path, refused):
+    """One rule for what a size may be, in every command: the SO-101 pair's 12-layer
+    pyramid is out of its reach, so no 81-brick model is written."""
+    out = tmp_path / "s.xml"
+    argv = ["--robot", "so101", "--structure", "pyramid", "--layers", "12"]
+    plan_err = refused(["plan", *argv])
+    scene_err = refused(["scene", *argv, "--out", str(out)])
+    assert "largest reachable is layers 3" in scene_err
+    assert scene_err == plan_err and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.physics
+def test_a_size_whose_zone_reaches_under_a_waiting_arm_is_refused_up_front(refused):
+    """The SO-101 pair's 4-layer even pyramid is within reach of every pose, but its shared
+    zone covers the left arm's forearm at its clear pose: built, it failed `shared_zone` after
+    156 s with every brick placed. Refused before physics, naming why and what builds."""
+    err = refused(["plan", "--robot", "so101", "--structure", "pyramid-even", "--layers", "4"])
+    assert "the left arm waiting at its clear pose has its left/lower_arm inside the shared " in err
+    assert "the largest reachable is layers 3" in err
+
+
+@pytest.mark.physics
 def test_the_size_suggested_for_an_unreachable_wall_is_whole_and_accepted(capsys, refused):
     # A wall is sized by its width at three courses: the bricks asked for change with it.
     err = refused(["plan", "--structure", "wall", "--wall-width", "7", "--bricks", "22"])
@@ -265,3 +287,12 @@ def test_help_shows_every_default_and_the_choices():
 
 def _help_of(parser) -> dict:
     return {a.option_strings[0]: a.help for a in parser._actions if a.option_strings}
+
+
+@pytest.mark.parametrize("command", ["record", "evaluate"])
+def test_the_seed_of_record_and_evaluate_is_the_first_episodes(command, capsys):
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--seed SEED the first episode's; episode i is seed + i" in text
+    assert "spawn jitter (default" not in text

@@ -79,3 +79,15 @@ def test_a_json_goal_of_hundreds_of_digits_is_out_of_range_not_an_overflow(tmp_p
 def test_a_goals_file_python_cannot_parse_whole_is_refused(tmp_path, refused, name, content, words):
     err = _refused_build(refused, tmp_path, name, content.encode())
     assert f"goals: {words}" in err
+
+
+@pytest.mark.parametrize(
+    "value, shown", [('"0.7"', "'0.7'"), ('"0.7 "', "'0.7 '"), ('""', "''"), ("true", None)]
+)
+def test_a_json_goal_written_as_a_string_or_a_boolean_is_refused(tmp_path, refused, value, shown):
+    doc = '{"goals": [{"x": 0.68, "y": 0.01, "z": 0.11, "yaw": ' + value + "}]}"
+    err = _refused_build(refused, tmp_path, "g.json", doc.encode())
+    if shown is None:
+        assert "goals: g.json row 1: yaw True is not a number" in err
+    else:
+        assert f"goals: g.json row 1: yaw {shown} is a string; accepted a JSON number" in err

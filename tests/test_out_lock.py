@@ -148,3 +148,20 @@ def test_folders_are_taken_once_each_in_one_order(tmp_path):
     with holding(asked):
         assert sorted(p.parent.name for p in tmp_path.glob(f"*/{LOCK_NAME}")) == ["a", "b"]
     assert not list(tmp_path.glob(f"*/{LOCK_NAME}"))
+
+
+def test_ctrl_c_while_a_frame_renders_is_an_interruption(tmp_path, capsys, fake_build):
+    """A Ctrl-C inside the OpenGL binding's argument conversion reaches Python as ctypes'
+    ArgumentError ("argument 1: KeyboardInterrupt"): exit 130 and one line, as any Ctrl-C."""
+    import ctypes
+
+    def interrupt(i):
+        raise ctypes.ArgumentError("argument 1: KeyboardInterrupt: ")
+
+    fake_build.during = interrupt
+    assert main(_build(tmp_path / "new" / "run")) == 130
+    assert capsys.readouterr().err.strip() == "pyramid-sim: interrupted"
+    assert list(tmp_path.iterdir()) == []
+    fake_build.during = lambda i: (_ for _ in ()).throw(ctypes.ArgumentError("argument 1: x"))
+    with pytest.raises(ctypes.ArgumentError):  # a real one is a bug: its traceback shows
+        main(_build(tmp_path / "run"))

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = pytest.mark.physics
+pytestmark = [pytest.mark.physics, pytest.mark.slow]  # starts and stops a Ray cluster
 
 GRID = ["--structure", "pyramid-even", "--layers", "1", "--friction", "0.6,0.8", "--workers", "2"]
 FRICTIONS = ["0.6", "0.8"]

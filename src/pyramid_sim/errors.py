@@ -9,6 +9,15 @@ class ConfigError(PyramidSimError, ValueError):
     """A setting or input is outside its accepted range; the message names both."""
 
 
+class ActionError(ConfigError):
+    """An action the environment does not take (its shape, type, or a value not finite)."""
+
+
+class PolicyError(ConfigError):
+    """A policy's own code failed (its factory, reset() or act()) or gave an action the
+    environment does not take; the message names the policy, the episode and its seed."""
+
+
 class UnreachableError(PyramidSimError):
     """A target pose cannot be reached by the arm assigned to it."""
 

@@ -138,6 +138,7 @@ def test_a_spot_kept_blocked_by_a_brick_no_hand_dropped_stalls_the_build_with_it
     assert result.sim_time_s < knocked[0] + 15.0 + 5.0
 
 
+@pytest.mark.slow  # a whole 20-brick build; the jitter's own tests are in test_spawner.py
 def test_bricks_spawned_off_the_spot_are_still_built():
     """A feeder 2 mm off in x and y (seed 1 once exposed a solver blow-up in a brick column:
     the Newton line search now has 50 iterations)."""
@@ -171,19 +172,19 @@ def _brick_manager_spec(name: str) -> StructureSpec:
 
 @pytest.mark.parametrize(
     "name, arms",
-    [
-        ("wall", "both"),
-        ("wall", "left"),
-        ("wall-pyramid", "both"),
-        ("wall-pyramid", "right"),
-        ("towers", "both"),
-        ("towers", "right"),
+    [  # the default run builds the five goals by both arms and a pyramid by one; the rest: slow
+        pytest.param("wall", "both", marks=pytest.mark.slow),
+        pytest.param("wall", "left", marks=pytest.mark.slow),
+        pytest.param("wall-pyramid", "both", marks=pytest.mark.slow),
+        pytest.param("wall-pyramid", "right", marks=pytest.mark.slow),
+        pytest.param("towers", "both", marks=pytest.mark.slow),
+        pytest.param("towers", "right", marks=pytest.mark.slow),
         ("list", "both"),
-        ("list", "left"),
+        pytest.param("list", "left", marks=pytest.mark.slow),
         ("pyramid", "left"),
-        ("pyramid-even", "left"),
-        ("corner-wall", "both"),
-        ("corner-wall", "left"),
+        pytest.param("pyramid-even", "left", marks=pytest.mark.slow),
+        pytest.param("corner-wall", "both", marks=pytest.mark.slow),
+        pytest.param("corner-wall", "left", marks=pytest.mark.slow),
     ],
 )
 def test_every_structure_is_built_by_both_arms_and_by_one(name, arms):

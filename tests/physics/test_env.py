@@ -116,6 +116,7 @@ def test_the_structures_place_and_the_feed_spot_vary_by_centimetres_across_seeds
     fixed.close()
 
 
+@pytest.mark.slow  # 120 episodes; the other tests here roll the expert out at each level once
 @pytest.mark.parametrize("variation", ["fixed", "layout", "full"])
 @pytest.mark.parametrize("structure", [("pyramid-even", 1), ("pyramid", 3)])
 def test_the_expert_builds_at_every_level_over_twenty_seeds(variation, structure):
@@ -167,6 +168,31 @@ def test_two_environments_step_in_an_async_vector_env():
 def test_a_bad_setting_is_refused_when_the_environment_is_made():
     with pytest.raises(pyramid_sim.ConfigError, match="brick friction"):
         gymnasium.make(ENV, structure="pyramid", layers=1, friction=-1)
+
+
+def test_reset_takes_no_options_and_a_step_needs_a_live_episode():
+    """Gymnasium's contract on the unwrapped environment: options it does not use are refused
+    naming what it takes; a step before the first reset or after the episode ended raises
+    ResetNeeded rather than simulating on."""
+    env = gymnasium.make(ENV, structure="pyramid", layers=1, limit_commands=False).unwrapped
+    with pytest.raises(gymnasium.error.ResetNeeded, match="before the first reset"):
+        env.step(env.action_space.sample())
+    for options in ({"junk": 1}, "junk"):
+        with pytest.raises(pyramid_sim.ConfigError) as refused:
+            env.reset(seed=0, options=options)
+        assert str(refused.value).startswith(f"reset options: {options!r}; accepted None or {{}}")
+    env.reset(seed=0, options={})
+    env.action_space.seed(0)
+    for _ in range(200):  # random targets end the episode (as above)
+        _, _, terminated, truncated, info = env.step(env.action_space.sample())
+        if terminated or truncated:
+            break
+    assert terminated and info["failure"]
+    with pytest.raises(gymnasium.error.ResetNeeded, match="the episode has ended"):
+        env.step(env.action_space.sample())
+    env.reset(seed=0)
+    env.step(env.action_space.sample())  # a new episode steps again
+    env.close()
 
 
 def test_rgb_array_renders_the_overview_camera():

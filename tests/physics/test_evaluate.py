@@ -93,6 +93,81 @@ def test_bad_evaluate_input_is_refused_in_one_line_writing_nothing(argv, words, 
     assert words in line and not out.exists()
 
 
+BAD_POLICIES = """
+import numpy as np
+
+
+def broken_factory(env):
+    raise ValueError("no weights in ./ckpt")
+
+
+class _FailsLater:
+    def __init__(self, env):
+        self.env, self.acts = env, 0
+
+    def reset(self):
+        pass
+
+    def act(self, observation):
+        self.acts += 1
+        if self.acts > 5:  # the first act() of the second episode (5 steps each)
+            raise ValueError("tensor of the wrong size")
+        return self.env.unwrapped.held_command()
+
+
+def fails_later(env):
+    return _FailsLater(env)
+
+
+def wrong_shape(env):
+    return lambda observation: np.zeros(3)
+
+
+def not_finite(env):
+    return lambda observation: np.full(16, np.nan)
+"""
+
+
+@pytest.mark.parametrize(
+    "factory, words",
+    [
+        (
+            "broken_factory",
+            "policy: 'bad_policies:broken_factory' failed to make its policy (ValueError: no "
+            "weights in ./ckpt); accepted a factory that returns a policy for the environment",
+        ),
+        (
+            "fails_later",
+            "policy: 'bad_policies:fails_later', episode 2 of 2 (seed 100001): act() raised "
+            "ValueError: tensor of the wrong size",
+        ),
+        (
+            "wrong_shape",
+            "policy: 'bad_policies:wrong_shape', episode 1 of 2 (seed 100000): act() gave an "
+            "action: shape (3,); accepted (16,)",
+        ),
+        (
+            "not_finite",
+            "policy: 'bad_policies:not_finite', episode 1 of 2 (seed 100000): act() gave an "
+            "action: entries [0, 1,",
+        ),
+    ],
+)
+def test_a_users_policy_that_fails_is_named_in_one_line_with_its_episode(
+    factory, words, refused, tmp_path, monkeypatch
+):
+    """The user's code at fault: one line naming the policy, the episode and seed, and what
+    went wrong; exit 2, no traceback, and no evaluation.json claiming episodes."""
+    (tmp_path / "bad_policies.py").write_text(BAD_POLICIES)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    out = tmp_path / "run"
+    line = refused(
+        ["evaluate", "--policy", f"bad_policies:{factory}", "--structure", "pyramid",
+         "--layers", "1", "--episodes", "2", "--max-steps", "5", "--quiet", "--out", str(out)]
+    )  # fmt: skip
+    assert line.startswith(f"pyramid-sim: error: {words}") and not out.exists()
+
+
 def test_a_checkpoint_folder_needs_lerobot_and_says_so(refused, tmp_path, monkeypatch):
     """lerobot is never a dependency: where it is missing (made so here, if it is installed),
     a checkpoint is refused in a line saying what to install (.ci/run drives a real one with

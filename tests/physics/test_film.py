@@ -136,7 +136,10 @@ def test_the_magazine_stays_at_rest_until_a_brick_is_spawned():
     assert stop["at"] is not None and loop.spawner.next_slot < h.n_bricks
 
 
-@pytest.mark.parametrize("robot", ["panda", "baxter"])
+@pytest.mark.parametrize(
+    "robot",
+    ["panda", pytest.param("baxter", marks=pytest.mark.slow)],  # Baxter's at half speed
+)
 def test_each_wrist_camera_has_its_brick_in_view_from_approach_to_release(robot):
     """The brick an arm carries (or is about to grip) projects inside its wrist camera's
     image at every control step from the pick's servo to the release."""
@@ -216,7 +219,10 @@ def test_a_bricks_faces_are_framed_by_a_darker_border():
         assert model.mat_texid[model.geom_matid[geom]].max() == t
 
 
-@pytest.mark.parametrize("robot", ["panda", "baxter"])
+@pytest.mark.parametrize(
+    "robot",
+    ["panda", pytest.param("baxter", marks=pytest.mark.slow)],  # Baxter's at half speed
+)
 def test_each_wrist_camera_sees_both_fingers_and_the_brick_between_them_at_the_grip(robot):
     """As each hand has closed on its first brick, its wrist camera's image holds both fingers
     and the brick (counted in a segmentation render: which geom drew each pixel)."""

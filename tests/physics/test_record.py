@@ -172,6 +172,26 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
 
 
 @pytest.mark.parametrize(
+    "changed, words",
+    [
+        ({"seed": 7}, "first_seed 0, this run 7"),
+        ({"friction": 0.5}, "options.config.brick.friction 1.0, this run 0.5"),
+    ],
+)
+def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
+    dataset, tmp_path, changed, words
+):
+    import shutil
+
+    root, _ = dataset
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    with pytest.raises(pyramid_sim.ConfigError, match="another recording") as refused:
+        _record(copy, 3, **changed)
+    assert f"(episode 0 has {words});" in str(refused.value)
+
+
+@pytest.mark.parametrize(
     "argv, words",
     [
         (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
@@ -243,6 +263,7 @@ def test_a_recording_on_ray_without_ray_is_refused_writing_nothing(monkeypatch, 
     assert not (tmp_path / "d").exists()
 
 
+@pytest.mark.slow  # starts a local Ray instance
 def test_episodes_filmed_as_ray_tasks_make_the_serial_runs_dataset(dataset, tmp_path):
     """Ray tasks film the episodes on their nodes and ship the files back; the dataset is the
     one filmed here. The local Ray instance keeps its token under HOME and its session under

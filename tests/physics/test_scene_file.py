@@ -13,7 +13,7 @@ from pyramid_sim.physics.scene import build_scene
 pytestmark = pytest.mark.physics
 
 
-@pytest.mark.parametrize("robot", ["panda", "baxter"])
+@pytest.mark.parametrize("robot", ["panda", "baxter", "so101"])  # each robot's scene
 def test_the_xml_and_its_meshes_open_after_a_move(tmp_path, capsys, robot):
     out = tmp_path / "made" / "x.xml"
     assert (
@@ -44,7 +44,7 @@ def test_the_xml_and_its_meshes_open_after_a_move(tmp_path, capsys, robot):
     shutil.move(str(out), moved / "x.xml")
     shutil.move(str(tmp_path / "made" / "x_meshes"), moved / "x_meshes")
     loaded = mujoco.MjModel.from_xml_path(str(moved / "x.xml"))
-    config = SimConfig(robot=robot)
+    config = SimConfig.for_robot(robot)
     compiled = build_scene(config, 1 + config.spare_bricks).model
     assert (loaded.nbody, loaded.ngeom, loaded.nmesh) == (
         compiled.nbody,

@@ -13,6 +13,7 @@ import pytest
 import pyramid_sim
 from pyramid_sim.config import SimConfig
 from pyramid_sim.learning.env import BuildEnv
+from pyramid_sim.physics.robot_models.so101 import CLOSER
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.robots import PRESETS
 
@@ -60,9 +61,10 @@ def test_its_scale_reaches_the_compiled_model():
     assert colliding == ["left/moving_pad"]  # the jaw's mesh hull fills the gap: off
     panda = build_scene(SimConfig(), 2).model  # the scene's cameras, framed for DE NIRO's
     work = np.array([0.55, 0.0, 0.1])
-    for camera in ("overview", "front", "top"):
+    for camera, closer in CLOSER.items():  # about a third as far from the work
         near, far = model.camera(camera).pos - work, panda.camera(camera).pos - work
-        np.testing.assert_allclose(near, 0.35 * far, atol=1e-9)  # a third as far from the work
+        np.testing.assert_allclose(near, closer * far, atol=1e-9)
+    assert CLOSER == {"overview": 0.45, "front": 0.35, "top": 0.35}  # the overview: both jaws
 
 
 def test_without_its_aim_past_the_sag_the_arm_stops_short_of_a_target():

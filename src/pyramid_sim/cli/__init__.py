@@ -6,6 +6,7 @@ Every bad input ends in one line on stderr and exit status 2, before anything is
 
 from __future__ import annotations
 
+import ctypes
 import signal
 import sys
 import threading
@@ -82,9 +83,16 @@ def make_parser() -> a.Parser:
     reach.add_argument(
         "--arms",
         type=a.one_of("arms", arm_sets),
-        default="all",
+        default="both",
         metavar="|".join(arm_sets),
-        help="the arm set to check: both, left, right, or all three (default all)",
+        help="the arm set to check: both, left, right, or all three (default both, as a build)",
+    )
+    reach.add_argument(
+        "--any-layout",
+        action="store_true",
+        help="add the column 'both arms, any layout': the largest size within reach wherever "
+        "the learning environment's layout variation puts it (checked at its region's 16 "
+        "corners: several times the IK work) (default: the arms' columns alone)",
     )
     return parser
 
@@ -114,6 +122,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:  # Ctrl-C: partial files are already gone; no traceback
         print("pyramid-sim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except ctypes.ArgumentError as err:
+        if not interrupted(err):
+            raise
+        print("pyramid-sim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def interrupted(err: ctypes.ArgumentError) -> bool:
+    """Whether ctypes' error wraps a Ctrl-C: one that lands while a frame renders arrives as
+    "argument 1: KeyboardInterrupt" from the OpenGL binding's argument conversion."""
+    cause = err.__cause__ or err.__context__
+    return isinstance(cause, KeyboardInterrupt) or "KeyboardInterrupt" in str(err)
 
 
 __all__ = ["main", "make_parser"]

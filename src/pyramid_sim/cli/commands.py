@@ -164,11 +164,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def cmd_scene(args: argparse.Namespace) -> int:
-    """The compiled model a build of these options runs, with its bricks parked, to a file."""
-    from ..core.plan import make_plan
-
+    """The compiled model a build of these options runs, with its bricks parked, to a file:
+    of a size `build` takes (every pose checked by IK first, as `plan` and `build` do)."""
     config = config_from_args(args)
-    plan = make_plan(spec_from_args(args, config), config, args.arms)
+    spec = spec_from_args(args, config)
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
@@ -177,7 +176,9 @@ def cmd_scene(args: argparse.Namespace) -> int:
 
         check_mesh_folder(args.out)
     from ..output.scene_files import write_scene
+    from ..physics.reach import prepare
 
+    plan = prepare(spec, config, args.arms)  # out of reach: refused, as `plan` refuses it
     with removed_if_failed([args.out.parent]):
         model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
     files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
@@ -196,29 +197,34 @@ def cmd_reach(args: argparse.Namespace) -> int:
     arm_sets: tuple[ArmChoice, ...] = ARM_CHOICES if args.arms == "all" else (args.arms,)
     checker = ReachChecker(SimConfig.for_robot(args.robot))
     arm_heads = [f"{a} arm{'s' if a == 'both' else ''}" for a in arm_sets]
-    layout_head = ["both arms, any layout"] if "both" in arm_sets else []
+    any_layout = args.any_layout and "both" in arm_sets
+    layout_head = ["both arms, any layout"] if any_layout else []
     rows = [["structure", "grows", "other options", *arm_heads, *layout_head]]
     for name, knob in SIZE_KNOB.items():
         spec = StructureSpec(name)
         largest = {a: checker.largest(spec, a) for a in arm_sets}
         anywhere = (
             [str(largest_in_every_layout(checker, spec, "both", largest["both"] + 1))]
-            if "both" in largest
+            if any_layout
             else []
         )
         rows.append([name, knob, held_fixed(spec), *map(str, largest.values()), *anywhere])
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
     for r in rows:
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
-    print(REACH_CHECKS)
+    print(REACH_CHECKS + (REACH_LAYOUTS if any_layout else ""))
     return 0
 
 
 REACH_CHECKS = (
     "Checked by IK alone: every pose of the plan within the joints' ranges and clear of "
-    "collisions. Not checked: joint speed, demanded torque with a brick held, and grip, which "
-    "only a build measures; a size within reach can still fail on them. 'any layout': the "
-    "learning environment's layout variation, checked at its region's corners (the structure "
-    "shifted up to 5 cm and turned up to 15 degrees; the spawn spot 3 cm x 4 cm off, turned "
-    "up to 20 degrees); a draw inside it still out of reach is drawn again."
+    "collisions, and each arm waiting at its clear pose outside the zone the arms take turns "
+    "in (a wider structure reaches under a waiting arm). Not checked: joint speed, demanded torque with a brick held, and grip, which "
+    "only a build measures; a size within reach can still fail on them."
+)
+REACH_LAYOUTS = (
+    " 'any layout' (--any-layout): the learning environment's layout variation, checked at "
+    "its region's corners (the structure shifted up to 5 cm and turned up to 15 degrees; the "
+    "spawn spot 3 cm x 4 cm off, turned up to 20 degrees); a draw inside it still out of "
+    "reach is drawn again."
 )

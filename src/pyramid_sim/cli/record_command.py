@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..choices import EVAL_FIRST_SEED
 from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import IMAGE_SIZE_TEXT, NOISE, WORKERS, parse_whole
@@ -40,7 +41,11 @@ def image_size(text: str) -> tuple[int, int]:
 
 def add_record_args(p: argparse.ArgumentParser) -> None:
     add_structure_args(p)
-    add_physics_args(p)
+    add_physics_args(
+        p,
+        seed_help=f"the first episode's; episode i is seed + i (default 0: evaluations start at "
+        f"{EVAL_FIRST_SEED})",
+    )
     add_schedule_arg(p)
     add_episode_args(p, 1, "whole builds")
     p.add_argument(

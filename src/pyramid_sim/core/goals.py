@@ -44,7 +44,10 @@ def load_goals(path: Path, brick: BrickConfig, table_z: float) -> tuple[BrickTar
         raise ConfigError(f"goals: {name} holds no goals; accepted 1 to {MAX_GOALS}")
     if len(rows) > MAX_GOALS:
         raise ConfigError(f"goals: {name} holds {len(rows)} goals; accepted 1 to {MAX_GOALS}")
-    targets = [_target(i, row, name, brick, table_z) for i, row in enumerate(rows, start=1)]
+    text_numbers = path.suffix.lower() != ".json"  # CSV holds text; JSON has numbers of its own
+    targets = [
+        _target(i, row, name, brick, table_z, text_numbers) for i, row in enumerate(rows, start=1)
+    ]
     # Every plan lays the courses bottom first, keeping the file's order within a course.
     order = sorted(range(len(targets)), key=lambda i: targets[i].layer)
     fault = first_fault([targets[i].pose for i in order], brick, table_z)
@@ -109,7 +112,9 @@ def _csv_rows(text: str, name: str) -> list[dict]:
     return rows
 
 
-def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) -> BrickTarget:
+def _target(
+    i: int, row: dict, name: str, brick: BrickConfig, table_z: float, text_numbers: bool
+) -> BrickTarget:
     where = f"goals: {name} row {i}"
     unknown = [k for k in row if k not in COLUMNS]
     if unknown:
@@ -117,7 +122,7 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
     missing = [k for k in REQUIRED if k not in row or row[k] in ("", None)]
     if missing:
         raise ConfigError(f"{where}: no {missing[0]}; accepted columns {', '.join(COLUMNS)}")
-    values = {key: _value(row, key, where) for key in COLUMNS}
+    values = {key: _value(row, key, where, text_numbers) for key in COLUMNS}
     layer = round((values["z"] - table_z) / brick.height)
     if layer < 0 or abs(values["z"] - table_z - layer * brick.height) > TOLERANCE:
         raise ConfigError(
@@ -128,10 +133,13 @@ def _target(i: int, row: dict, name: str, brick: BrickConfig, table_z: float) ->
     return BrickTarget(pose, layer)
 
 
-def _value(row: dict, key: str, where: str) -> float:
+def _value(row: dict, key: str, where: str, text_numbers: bool) -> float:
     """The row's `key` as a float within its sane bound (0 if left out); ConfigError naming
-    the row, the column and the accepted range otherwise."""
+    the row, the column and the accepted range otherwise. A number written as text is one
+    only where the file is text (CSV): in JSON, "0.7" is a string, as `true` is not 1."""
     raw = row.get(key, 0.0)
+    if isinstance(raw, str) and not text_numbers:
+        raise ConfigError(f"{where}: {key} {_quoted(raw)} is a string; accepted a JSON number")
     raw = 0.0 if raw in ("", None) else raw
     try:
         if isinstance(raw, bool):

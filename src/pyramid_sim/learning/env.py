@@ -17,6 +17,7 @@ warnings, the expert giving a brick up); truncated at the build's time limit.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from copy import deepcopy
 from typing import Any
 
@@ -51,6 +52,26 @@ OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "he
        "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints")  # fmt: skip
 
 
+def check_reset_options(options: Any) -> None:
+    """ConfigError for reset options: the environment takes none (an episode is its seed)."""
+    if options is not None and options != {}:
+        shown = repr(options) if len(repr(options)) <= 60 else f"{repr(options)[:57]}..."
+        raise ConfigError(
+            f"reset options: {shown}; accepted None or {{}} (no option keys: an episode is "
+            "drawn from its seed alone)"
+        )
+
+
+def require_live_episode(reset_needed: bool, ended: bool) -> None:
+    """Gymnasium's ResetNeeded for a step before the first reset or after the episode ended."""
+    if reset_needed or ended:
+        raise gymnasium.error.ResetNeeded(
+            "step: the episode has ended; call reset() to start the next"
+            if ended
+            else "step: before the first reset(); call reset() first"
+        )
+
+
 def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
@@ -64,6 +85,7 @@ class BuildEnv(gymnasium.Env):
     environment's own (the module's docstring, docs/learning.md)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
+    _reset_needed = True  # Gymnasium's contract: reset before the first step
 
     def __init__(
         self,
@@ -152,16 +174,19 @@ class BuildEnv(gymnasium.Env):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         """A new build from the start: the episode of `seed`, or without one the next seed of
-        the environment's random stream."""
+        the environment's random stream. It takes no options (None or {})."""
+        check_reset_options(options)
         super().reset(seed=seed)
         episode = seed if seed is not None else int(self.np_random.integers(2**32))
         lay.check_seed(episode)
         self.seed_of_episode = episode
         self._loop = self._new_loop(episode)
         self._start_episode()
+        self._reset_needed = False
         return self._observe(), episode_info(self, None, None)
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        require_live_episode(self._reset_needed, self.ended)
         names = self.ee.names if self.action_mode == "ee" else self.layout.names
         target = checked_action(action, self._low, self._high, names)
         self.steps_taken += 1
@@ -173,13 +198,7 @@ class BuildEnv(gymnasium.Env):
             ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
         for k in range(1, steps + 1):
             try:
-                if self.action_mode == "ee":
-                    command = self.ee.command(loop, target)
-                elif ramp is None:
-                    command = self.generator.step(target)
-                else:
-                    command = ramp(k / steps)
-                failure = loop.apply(command)
+                failure = loop.apply(command_at(self, target, ramp, k / steps))
             except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
                 failure = no_motion_reason(loop.data.time)
             newly += self.placing.update(loop)
@@ -187,10 +206,8 @@ class BuildEnv(gymnasium.Env):
             failure = failure or episode_failure(loop, self._steps % CHECK_EVERY == 0)
             if failure is not None or self.placing.count == len(self.plan.bricks):
                 break
-        if ramp is None and self.action_mode == "joint":
-            self.generator.lag()  # its peak is the episode's
+        self.generator.lag()  # its peak is the episode's (0 where it is not used)
         success = self.placing.count == len(self.plan.bricks)
-        # The build's time limit ends an episode as truncated, whatever stopped the loop there.
         truncated = not success and loop.data.time > self.config.max_sim_time
         terminated = not truncated and (success or failure is not None)
         self.ended = terminated or truncated
@@ -262,6 +279,16 @@ class BuildEnv(gymnasium.Env):
     def loop(self) -> BuildLoop:
         """The build this episode runs (its parts, its expert's state)."""
         return self._loop
+
+
+def command_at(
+    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None, share: float
+) -> np.ndarray:
+    """The command for one control step, `share` through an environment step toward `target`:
+    the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
+    if env.action_mode == "ee":
+        return env.ee.command(env.loop, target)
+    return env.generator.step(target) if ramp is None else ramp(share)
 
 
 def end_effector(config: SimConfig, layout: lay.Layout, steps: int) -> EndEffectorControl:

@@ -18,7 +18,7 @@ from gymnasium.wrappers import TimeLimit
 
 from ..choices import EVAL_FIRST_SEED
 from ..config import MotionConfig
-from ..errors import ConfigError
+from ..errors import ActionError, ConfigError, PolicyError
 from ..output.files import atomic_path, write_json_atomic
 from ..params import EPISODES, MAX_STEPS
 from ..version import __version__
@@ -108,12 +108,17 @@ def versions() -> dict[str, str]:
 
 def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str, Any]:
     """One episode of `policy` from `reset(seed=seed)` in `env` (a BuildEnv, wrapped or
-    not): its row. An episode cut by a step limit fails for it."""
+    not): its row. An episode cut by a step limit fails for it. PolicyError if the policy's
+    reset() or act() raises, or act() gives an action the environment does not take."""
     observation, _ = env.reset(seed=seed)
-    policy.reset()
+    _policy_call(policy.reset, "reset()")
     steps, start = 0, time.perf_counter()
     while True:
-        observation, _, terminated, truncated, info = env.step(policy.act(observation))
+        action = _policy_call(policy.act, "act()", observation)
+        try:
+            observation, _, terminated, truncated, info = env.step(action)
+        except ActionError as err:
+            raise PolicyError(f"act() gave an {err}") from err
         steps += 1
         if film is not None:
             film(env.render())
@@ -152,11 +157,7 @@ def evaluate(
     rows = []
     try:
         for i in range(config.episodes):
-            seed = config.first_seed + i
-            if i < config.videos and out is not None:
-                rows.append(_filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps))
-            else:
-                rows.append(run_episode(env, policy, seed))
+            rows.append(_episode(env, policy, config, i, out))
             if on_episode is not None:
                 on_episode(rows[-1])
     finally:
@@ -191,6 +192,20 @@ def evaluate(
     return Evaluation(path, scores)
 
 
+def _episode(env: Any, policy: Any, config: EvaluateConfig, i: int, out: Path | None) -> dict:
+    """Episode `i`'s row, filmed if among the first `videos`; a PolicyError names the policy,
+    the episode and its seed (the user's code: one line, and no evaluation.json)."""
+    seed = config.first_seed + i
+    try:
+        if i < config.videos and out is not None:
+            return _filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps)
+        return run_episode(env, policy, seed)
+    except PolicyError as err:
+        raise PolicyError(
+            f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed {seed}): {err}"
+        ) from err.__cause__
+
+
 def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str, Any]:
     """An episode filmed from the overview camera into `path`, a frame each step, streamed
     into a file that lands whole or not at all."""
@@ -206,6 +221,14 @@ def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str,
     with atomic_path(path) as tmp:
         film(tmp)
     return rows[0]
+
+
+def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
+    """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
+    try:
+        return method(*args)
+    except Exception as err:
+        raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err
 
 
 def _plain(options: dict[str, Any]) -> dict[str, Any]:

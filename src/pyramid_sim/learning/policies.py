@@ -94,7 +94,13 @@ def make_policy(spec: str, env: Any) -> Policy:
         raise ConfigError(
             f"policy: {spec!r} cannot be loaded ({err}); accepted module:factory"
         ) from None
-    made = factory(env)
+    try:
+        made = factory(env)
+    except Exception as err:  # the user's code: one line naming it, not a traceback
+        raise ConfigError(
+            f"policy: {spec!r} failed to make its policy ({type(err).__name__}: {err}); "
+            "accepted a factory that returns a policy for the environment"
+        ) from err
     if hasattr(made, "act"):
         if not hasattr(made, "reset"):
             made.reset = lambda: None

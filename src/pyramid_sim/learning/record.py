@@ -240,11 +240,22 @@ def _check_same_recording(
         for name in wanted:
             if name in RUN_ONLY or kept.get(name) == wanted[name]:
                 continue
+            setting, was, now = _difference(name, kept.get(name), wanted[name])
             raise ConfigError(
                 f"out: {str(out)!r} holds episodes of another recording (episode {index} has "
-                f"{name} {_short(kept.get(name))}, this run {_short(wanted[name])}); accepted a "
-                "new folder, or the same recording's settings"
+                f"{setting} {_short(was)}, this run {_short(now)}); accepted a new folder, or "
+                "the same recording's settings"
             )
+
+
+def _difference(name: str, was: Any, now: Any) -> tuple[str, Any, Any]:
+    """The first setting under `name` where `was` and `now` differ (`options.config.seed`),
+    and its two values: a long setting cut short would show both the same."""
+    if isinstance(was, dict) and isinstance(now, dict):
+        for key in sorted(set(was) | set(now)):
+            if was.get(key) != now.get(key):
+                return _difference(f"{name}.{key}", was.get(key), now.get(key))
+    return name, was, now
 
 
 def _short(value: Any) -> str:

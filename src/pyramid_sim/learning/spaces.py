@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
+from ..errors import ActionError
 from . import layout as lay
 from .observation_names import BRICK_FIELDS, GOAL_FIELDS
 
@@ -56,16 +57,16 @@ def checked_action(
     action: Any, low: np.ndarray, high: np.ndarray, names: tuple[str, ...]
 ) -> np.ndarray:
     """The action as float64 at float32's precision (a recorded action replays bit for
-    bit), clipped to [low, high]; ValueError for one of another shape, not numeric, or not
+    bit), clipped to [low, high]; ActionError (a ValueError) for one of another shape, not numeric, or not
     finite."""
     array = np.asarray(action)
     if array.dtype.kind not in "biuf":
-        raise ValueError(f"action: dtype {array.dtype} is not numeric; accepted float32")
+        raise ActionError(f"action: dtype {array.dtype} is not numeric; accepted float32")
     if array.shape != low.shape:
-        raise ValueError(f"action: shape {array.shape}; accepted {low.shape} ({', '.join(names)})")
+        raise ActionError(f"action: shape {array.shape}; accepted {low.shape} ({', '.join(names)})")
     if not np.all(np.isfinite(array)):
         bad = [i for i, v in enumerate(array.astype(np.float64)) if not np.isfinite(v)]
-        raise ValueError(f"action: entries {bad} are not finite; accepted finite numbers")
+        raise ActionError(f"action: entries {bad} are not finite; accepted finite numbers")
     return np.clip(array.astype(np.float32).astype(np.float64), low, high)
 
 

@@ -45,11 +45,11 @@ class BuildLoop:
         self._command_gap = np.array([joints, 2 * joints + 1])
         self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
         self.placed = self.steps = 0
-        robot = config.robot_description
-        self._sag = None if robot.gravity_compensation else SagOffset(self.ik.model, robot)
+        robot, ik = config.robot_description, self.ik
+        self._sag = None if robot.gravity_compensation else SagOffset(ik.model, robot)
         self.ik_rate = IKRate(self.ik, self.dispatch, config)
-        # how far each arm is from where its move ends: the IK's error, or the measured one
-        self.arrival = {a: self._error_of(a) for a in c.ARMS}
+        # how far each arm is from its move's end: the IK's error, or measured (tool_feedback)
+        self.arrival: dict[Arm, Callable[[], float]] = {a: ik.error_of(a) for a in c.ARMS}
         self.feedback: ToolFeedback | None = None  # the expert's loop, once closed
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
@@ -64,9 +64,6 @@ class BuildLoop:
     def step_of(self, arm: Arm) -> Step | None:
         """The primitive step the arm is in (None when idle)."""
         return self.dispatch.step_of(arm)
-
-    def _error_of(self, arm: Arm) -> Callable[[], float]:
-        return lambda: self.ik.error(arm)[0]
 
     # --- one control step, in parts --------------------------------------------------------
     def feed_spot(self) -> None:

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from ..choices import Arm, ArmChoice
 from ..config import SimConfig
 from ..core.plan import Plan, make_plan
@@ -15,6 +17,7 @@ from ..core.structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
 from ..errors import ConfigError, UnreachableError
 from . import names as c
 from .ik import DualArmIK
+from .parts import schedule_zones
 
 
 def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
@@ -46,7 +49,9 @@ def plan_poses(plan: Plan, config: SimConfig) -> list[tuple[Arm, str, Pose]]:
 
 
 class ReachChecker:
-    """IK reachability of poses, remembered per (arm, pose): sizes of one structure share most."""
+    """IK reachability of poses, remembered per (arm, pose): sizes of one structure share most;
+    and whether each arm, waiting at its clear pose, stands outside the zones the arms take
+    turns in (a structure wide enough to reach under a waiting arm cannot be built in turns)."""
 
     def __init__(self, config: SimConfig) -> None:
         self.config = config
@@ -56,6 +61,28 @@ class ReachChecker:
         self._clear_q = {
             a: self.ik.solve(a, clear_pose(a, config.robot_description)) for a in c.ARMS
         }
+        self.ik.reset(self._clear_q["left"], self._clear_q["right"])  # as a build starts
+        xpos, model = self.ik.configuration.data.xpos, self.ik.model
+        self._waiting = {
+            a: [(b, xpos[model.body(b).id, :2].copy()) for b in arm.zone_bodies]
+            for a, arm in config.robot_description.arms.items()
+        }
+
+    def in_the_way(self, plan: Plan) -> str | None:
+        """None if every arm that waits while the other works (both, or the one left idle)
+        stands at its clear pose outside every zone of the plan's schedule, else which arm's
+        body is inside which zone: the zone watch would count both arms in one zone for as
+        long as that arm waits, and the build fail."""
+        waiting = c.ARMS if plan.arms == "both" else (other(plan.arms),)
+        for name, zone in schedule_zones(self.config.schedule, plan, self.config).items():
+            for arm in waiting:
+                for body, (x, y) in self._waiting[arm]:
+                    if zone.contains((x, y)):
+                        return (
+                            f"the {arm} arm waiting at its clear pose has its {body} inside the "
+                            f"{name} zone the arms take turns in, at ({x:.3f}, {y:.3f}) m"
+                        )
+        return None
 
     def why_not(self, arm: Arm, pose: Pose) -> str | None:
         """None if the arm reaches the pose from home, else why not. The other arm waits at its
@@ -72,8 +99,18 @@ class ReachChecker:
         return self._known[key]
 
     def check(self, plan: Plan) -> None:
-        """Raise UnreachableError naming the first pose of the plan the IK cannot reach."""
-        for arm, what, pose in plan_poses(plan, self.config):
+        """Raise UnreachableError naming an arm that would wait inside a zone (`in_the_way`),
+        or a pose of the plan the IK cannot reach: the farthest from its arm's base first,
+        where a plan too large fails (its nearer poses are not solved for nothing)."""
+        in_the_way = self.in_the_way(plan)
+        if in_the_way is not None:
+            raise UnreachableError(in_the_way)
+        arms = self.config.robot_description.arms
+        poses = plan_poses(plan, self.config)
+        poses.sort(
+            key=lambda p: -float(np.linalg.norm(np.subtract(p[2].position, arms[p[0]].base)))
+        )
+        for arm, what, pose in poses:
             reason = self.why_not(arm, pose)
             if reason is not None:
                 raise UnreachableError(f"{what}: {reason}")

@@ -35,7 +35,7 @@ class ToolFeedback:
         self.dispatch, self.custody = loop.dispatch, loop.custody
         self.dt = loop.config.motion.control_dt
         self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
-        self._ik_error = {a: (lambda arm=a: loop.ik.error(arm)[0]) for a in c.ARMS}
+        self._ik_error = {a: loop.ik.error_of(a) for a in c.ARMS}
         self.bias = {a: np.zeros(3) for a in c.ARMS}
         self._waited = {a: 0.0 for a in c.ARMS}
         self._step: dict[Arm, object] = {a: None for a in c.ARMS}

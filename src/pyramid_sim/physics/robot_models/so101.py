@@ -39,6 +39,8 @@ CAMERA_AT, CAMERA_LOOKS_AT, CAMERA_FOVY = (0.06, 0.0, -0.05), (0.0, 0.0, 0.01), 
 def arm_spec(arm: ArmDescription, robot: RobotDescription, config: SimConfig) -> mujoco.MjSpec:
     """One SO-101 with the changes listed in this module's docstring, its names unprefixed."""
     spec = mujoco.MjSpec.from_file(str(XML))
+    for mesh in spec.meshes:  # absolute, as `scene --out x.xml` copies them (scene_files.py)
+        mesh.file = str(XML.parent / spec.meshdir / mesh.file)
     for actuator in list(spec.actuators):
         spec.delete(actuator)
     hand, jaw = spec.body(HAND), spec.body(JAW)
@@ -97,8 +99,9 @@ def _add_tool(hand: mujoco.MjsBody, arm: ArmDescription, at: list[float]) -> Non
 
 
 # The scene's cameras frame DE NIRO's workspace; this pair's is about a third of its size, so
-# each moves along its own line of sight to a third of its distance from the work.
-WORK, CLOSER = np.array([0.55, 0.0, 0.1]), 0.35
+# each moves along its own line of sight to about a third of its distance from the work: the
+# overview a little less close, so both arms' jaws stay in frame at their clear poses.
+WORK, CLOSER = np.array([0.55, 0.0, 0.1]), {"overview": 0.45, "front": 0.35, "top": 0.35}
 
 
 def add_so101_pair(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescription) -> None:
@@ -107,6 +110,6 @@ def add_so101_pair(spec: mujoco.MjSpec, config: SimConfig, robot: RobotDescripti
     for name, arm in robot.arms.items():
         frame = spec.worldbody.add_frame(pos=list(arm.base))
         spec.attach(arm_spec(arm, robot, config), prefix=f"{name}/", frame=frame)
-    for camera in ("overview", "front", "top"):
+    for camera, closer in CLOSER.items():
         cam = spec.camera(camera)
-        cam.pos = WORK + CLOSER * (np.array(cam.pos) - WORK)
+        cam.pos = WORK + closer * (np.array(cam.pos) - WORK)
