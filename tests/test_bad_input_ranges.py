@@ -15,6 +15,7 @@ from pyramid_sim.config import (
     VIDEO_WIDTH,
     antialias_text,
 )
+from pyramid_sim.params import NOISE
 
 VIDEO = ["--video", "b.mp4"]
 
@@ -37,6 +38,7 @@ def _help(command: str, flag: str) -> str:
         ("build", "--spawn-jitter", SPAWN_JITTER_MM.text, ["--spawn-jitter", "20"]),
         ("sweep", "--spawn-jitter", SPAWN_JITTER_MM.text, ["--spawn-jitter", "20"]),
         ("record", "--spawn-jitter", SPAWN_JITTER_MM.text, ["--spawn-jitter", "20"]),
+        ("record", "--noise", NOISE.text, ["--noise", "0.2"]),
     ],
 )
 def test_the_help_and_the_refusal_state_the_same_range_from_one_place(

@@ -108,3 +108,23 @@ def test_the_footprint_is_drawn_for_the_cameras_and_the_physics_is_the_same_bit_
     assert np.array_equal(runs[True][0], runs[False][0])
     drawn = np.abs(runs[True][1] - runs[False][1]).sum(axis=2) > 30
     assert 30 < drawn.sum() < 96 * 96 / 4  # two brick-sized tiles, seen from above
+
+
+def test_a_steady_offset_is_worked_away_where_the_brick_is_set_down():
+    """5 mrad on every joint, redrawn each second: the expert's aim shifts (the integral of
+    what the measured tool and brick miss by) and both bricks land within the tolerance."""
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    env.reset(seed=100_001)
+    offset = Perturber(Perturbation("offset", 0.005), _joints(env), 100_001)
+    shifted = 0.0
+    while True:
+        _, _, terminated, truncated, info = env.step(offset(env.expert_action()))
+        bias = env.loop.feedback.bias
+        shifted = max(shifted, *(float(np.abs(b).max()) for b in bias.values()))
+        if terminated or truncated:
+            break
+    assert info["is_success"], info["failure"]
+    assert shifted > 0.001  # the loop did work: a millimetre or more of aim moved
+    worst = max(b["error_xy_mm"] for b in info["result"]["bricks"])
+    assert worst < 5.0
+    env.close()

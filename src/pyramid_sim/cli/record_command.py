@@ -39,6 +39,14 @@ def image_size(text: str) -> tuple[int, int]:
     return parts[0], parts[1]
 
 
+def noise(text: str) -> float:
+    """DART's noise in rad, refused here when out of range (before anything is imported)."""
+    value = number("noise")(text)
+    if not NOISE.low <= value <= NOISE.high:
+        raise argparse.ArgumentTypeError(f"noise: {text!r} is out of range; accepted {NOISE.text}")
+    return value
+
+
 def add_record_args(p: argparse.ArgumentParser) -> None:
     add_structure_args(p)
     add_physics_args(
@@ -78,7 +86,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--noise",
-        type=number("noise"),
+        type=noise,
         default=0.0,
         metavar="RAD",
         help="DART: each joint's executed target off the expert's by an offset drawn every "

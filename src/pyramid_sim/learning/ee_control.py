@@ -16,6 +16,7 @@ import math
 import numpy as np
 from gymnasium import spaces
 
+from ..config import SimConfig
 from ..core.poses import Pose
 from ..physics import names as c
 from ..physics.loop import BuildLoop
@@ -115,3 +116,12 @@ class EndEffectorControl:
         """Stay where aimed, the hands as they are commanded."""
         gaps = loop.data.ctrl[loop.handles.ctrl_index][self.gaps]
         return np.array([0.0, 0.0, 0.0, 0.0, gaps[0], 0.0, 0.0, 0.0, 0.0, gaps[1]])
+
+
+def end_effector(config: SimConfig, layout: Layout, steps: int) -> EndEffectorControl:
+    """The `ee` action mode's controller for the robot and settings."""
+    motion, robot = config.hand_motion, config.robot_description
+    floor = config.layout.table_top_z + config.brick.height / 2 + robot.grasp_height
+    return EndEffectorControl(
+        layout, motion.speed, motion.turn_rate, motion.control_dt, steps, floor
+    )

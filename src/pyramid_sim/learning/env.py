@@ -26,8 +26,6 @@ import mink
 import numpy as np
 
 from ..choices import ArmChoice
-from ..config import SimConfig
-from ..errors import ConfigError
 from ..options import resolve
 from ..output.judge import judge
 from ..physics.loop import BuildLoop
@@ -36,7 +34,8 @@ from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
 from . import variation as var
-from .ee_control import EndEffectorControl
+from .contract import check_modes, check_reset_options, require_live_episode
+from .ee_control import end_effector
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
 from .footprints import mark
@@ -47,37 +46,8 @@ from .target_spline import spline_ramp
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
-ACTION_MODES = ("joint", "ee")
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
        "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints")  # fmt: skip
-
-
-def check_reset_options(options: Any) -> None:
-    """ConfigError for reset options: the environment takes none (an episode is its seed)."""
-    if options is not None and options != {}:
-        shown = repr(options) if len(repr(options)) <= 60 else f"{repr(options)[:57]}..."
-        raise ConfigError(
-            f"reset options: {shown}; accepted None or {{}} (no option keys: an episode is "
-            "drawn from its seed alone)"
-        )
-
-
-def require_live_episode(reset_needed: bool, ended: bool) -> None:
-    """Gymnasium's ResetNeeded for a step before the first reset or after the episode ended."""
-    if reset_needed or ended:
-        raise gymnasium.error.ResetNeeded(
-            "step: the episode has ended; call reset() to start the next"
-            if ended
-            else "step: before the first reset(); call reset() first"
-        )
-
-
-def check_modes(action_mode: str, render_mode: str | None) -> None:
-    """ConfigError for an action or render mode the environment does not have."""
-    if action_mode not in ACTION_MODES:
-        raise ConfigError(f"action mode: unknown {action_mode!r}; accepted joint or ee")
-    if render_mode not in (None, "rgb_array"):
-        raise ConfigError(f"render mode: unknown {render_mode!r}; accepted rgb_array")
 
 
 class BuildEnv(gymnasium.Env):
@@ -289,15 +259,6 @@ def command_at(
     if env.action_mode == "ee":
         return env.ee.command(env.loop, target)
     return env.generator.step(target) if ramp is None else ramp(share)
-
-
-def end_effector(config: SimConfig, layout: lay.Layout, steps: int) -> EndEffectorControl:
-    """The `ee` action mode's controller for the robot and settings."""
-    motion, robot = config.hand_motion, config.robot_description
-    floor = config.layout.table_top_z + config.brick.height / 2 + robot.grasp_height
-    return EndEffectorControl(
-        layout, motion.speed, motion.turn_rate, motion.control_dt, steps, floor
-    )
 
 
 def draw_goals(env: BuildEnv, scene: Any) -> None:
