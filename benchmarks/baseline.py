@@ -9,7 +9,8 @@ evaluate` on held-out seeds.
 Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
 (docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run),
 DIR/evaluation.json (the score, with its inputs and versions) and, with `--curve N`,
-DIR/curve.json and DIR/curve.png: every saved checkpoint scored on N seeds. Seeds are fixed:
+DIR/curve.json and DIR/curve.png: every saved checkpoint scored on N seeds. A run stopped
+midway goes on from where it stopped (the demos and a finished training kept). Seeds are fixed:
 demos from 0, evaluation from 100000, training seed 0. `--quick` does a few of each.
 """
 
@@ -17,10 +18,12 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 import time
 from dataclasses import asdict, dataclass, replace
+from datetime import datetime
 from pathlib import Path
 from typing import Any
 
@@ -144,6 +147,23 @@ def train(out: Path, recipe: Recipe) -> float:
     return time.perf_counter() - start
 
 
+def trained_before(out: Path) -> float | None:
+    """The seconds a finished training in `out` took (from its log), or None if there is
+    none: a run that stopped after training goes on from there, as `record` does."""
+    log, last = out / "train.log", out / "train" / "checkpoints" / "last" / "pretrained_model"
+    if not (last / "model.safetensors").is_file() or not log.is_file():
+        return None
+    stamps = re.findall(
+        r"INFO (\d{4}-\d\d-\d\d \d\d:\d\d:\d\d) .*?(Start offline|End of)", log.read_text()
+    )
+    start = [t for t, what in stamps if what == "Start offline"]
+    end = [t for t, what in stamps if what == "End of"]
+    if not start or not end:
+        return None
+    seconds = datetime.fromisoformat(end[-1]) - datetime.fromisoformat(start[0])
+    return seconds.total_seconds()
+
+
 def score(checkpoint: Path, recipe: Recipe, episodes: int, out: Path | None) -> dict[str, Any]:
     import pyramid_sim
 
@@ -184,7 +204,9 @@ def main(argv: list[str] | None = None) -> int:
     out, recipe = parse(argv)
     try:
         out.mkdir(parents=True, exist_ok=True)
-        seconds = {"record": record(out, recipe), "train": train(out, recipe)}
+        seconds = {"record": record(out, recipe)}
+        before = trained_before(out)
+        seconds["train"] = before if before is not None else train(out, recipe)
         checkpoint = out / "train" / "checkpoints" / "last" / "pretrained_model"
         start = time.perf_counter()
         scores = score(checkpoint, recipe, recipe.episodes, out)

@@ -149,8 +149,8 @@ def test_random_actions_end_an_episode_with_a_reason_never_an_error():
 
 
 def test_two_environments_step_in_an_async_vector_env():
-    envs = gymnasium.vector.AsyncVectorEnv(
-        [lambda: gymnasium.make(ENV, structure="pyramid", layers=1)] * 2
+    envs = gymnasium.vector.AsyncVectorEnv(  # raw commands: random targets end an episode soon
+        [lambda: gymnasium.make(ENV, structure="pyramid", layers=1, limit_commands=False)] * 2
     )
     obs, _ = envs.reset(seed=[1, 2])
     assert obs["state"].shape == (2, 16) and obs["bricks"].shape[0] == 2

@@ -125,9 +125,10 @@ class ArmRunner:
             self.gap = self._gap_from + (squeeze - self._gap_from) * ramp if ramp < 1 else 0.0
             finished = self._t >= grip.close_time + grip.settle_time
         else:  # RELEASE: hold still until the hand is where it should be, then open
-            if self._opening is None and self._t >= self.config.motion.settle_before_release:
+            wait = self.config.motion.settle_before_release
+            if self._opening is None and self._t >= wait:
                 if ik_error() <= self.config.motion.position_tolerance:
-                    self._opening = self._t - dt  # the ramp's first share on this tick
+                    self._opening = max(wait, self._t - dt)  # on time, or its first share now
             since = 0.0 if self._opening is None else self._t - self._opening
             ramp = min(1.0, since / grip.close_time)
             start = max(self._gap_from, self.squeeze_gap)
