@@ -52,11 +52,15 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     assert info["features"]["observation.state"]["shape"] == [16]
     # A state-only policy learns from where the bricks are; lerobot's sims carry next.success.
     environment = info["features"]["observation.environment_state"]
-    assert environment["shape"] == [4 * 7] and environment["names"][:2] == ["brick0.x", "brick0.y"]
+    assert environment["shape"] == [4 * 7 + 4] and environment["names"][:2] == [
+        "brick0.x",
+        "brick0.y",
+    ]
+    assert environment["names"][-4:] == ["goal0.x", "goal0.y", "goal0.z", "goal0.yaw"]
     assert info["features"]["next.success"]["dtype"] == "bool"
     data = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
     assert data["next.success"][-1] is True and not any(data["next.success"][:-1])
-    first = np.array(data["observation.environment_state"][0]).reshape(4, 7)
+    first = np.array(data["observation.environment_state"][0])[: 4 * 7].reshape(4, 7)
     assert abs(first[0, 2] - 0.11) < 1e-3  # the first brick lies on the spot, 11 cm up
     tasks = pq.read_table(root / "meta/tasks.parquet").to_pylist()
     assert tasks == [{"task_index": 0, "task": tasks[0]["task"]}] and "pyramid" in tasks[0]["task"]
