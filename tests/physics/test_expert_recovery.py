@@ -64,7 +64,7 @@ def test_darts_noise_moves_what_is_executed_while_the_label_stays_the_experts():
     end = expert_episode(env, 0, (), frames.append, noise=0.003)
     clean = []
     expert_episode(env, 0, (), clean.append)
-    assert end.success and end.failure is None
+    assert end.frames == len(frames)  # built or not (noise may cost a brick): a whole episode
     n = min(len(frames), len(clean), 200)
     states = np.array([f.state for f in frames[:n]]) - np.array([f.state for f in clean[:n]])
     assert np.abs(states).max() > 0.002  # the noise moved the arms off the clean path
