@@ -62,7 +62,7 @@ class Recipe:
     workers: int = 1  # episodes recorded at once (the dataset is the same)
 
 
-QUICK = dict(demos=2, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
+QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
              feedforward=128, encoder_layers=1, decoder_layers=1, chunk=10, action_steps=10,
              episodes=2, max_steps=100)  # fmt: skip
 
@@ -122,7 +122,10 @@ def built(demos: Path) -> list[int]:
 def train(out: Path, recipe: Recipe) -> float:
     """lerobot-train on one thread, on the episodes that built, its log in DIR/train.log."""
     r = recipe
-    episodes = ",".join(map(str, built(out / "demos")))
+    kept = built(out / "demos")
+    if not kept:
+        raise PyramidSimError("demos: no recorded episode built; accepted a recording with one")
+    episodes = ",".join(map(str, kept))
     command = [
         str(Path(sys.executable).parent / "lerobot-train"),
         f"--dataset.repo_id=local/{out.name}", f"--dataset.root={out / 'demos'}",
