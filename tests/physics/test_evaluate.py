@@ -200,6 +200,9 @@ def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
         max_episode_steps=10,
         **TASK,
     )
+    obs, _ = env.reset(seed=0, options={"lerobot_new_rollout": True})  # as lerobot-eval resets
+    with pytest.raises(pyramid_sim.ConfigError, match="reset options: {'junk': 1}"):
+        env.reset(seed=0, options={"lerobot_new_rollout": True, "junk": 1})
     obs, _ = env.reset(seed=0)
     features = info["features"]
     assert list(obs["agent_pos"].shape) == features["observation.state"]["shape"]

@@ -19,7 +19,17 @@ from .lerobot_units import LerobotUnits
 from .observation_names import environment_names
 from .spaces import environment_state
 
-__all__ = ["LEROBOT_ENV_ID", "LerobotView", "lerobot_keys", "make_lerobot_env"]
+__all__ = [
+    "LEROBOT_ENV_ID",
+    "NEW_ROLLOUT_OPTION",
+    "LerobotView",
+    "lerobot_keys",
+    "make_lerobot_env",
+]
+
+# lerobot-eval's mark on every reset that starts a rollout (lerobot.envs.utils): a signal to
+# its own wrappers, not an option of the episode, which is drawn from its seed alone.
+NEW_ROLLOUT_OPTION = "lerobot_new_rollout"
 
 
 class LerobotView(gymnasium.Wrapper):
@@ -52,8 +62,15 @@ class LerobotView(gymnasium.Wrapper):
         self.observation_space = spaces.Dict(observed)
         self.task = self.task_description = task_text(env)
 
-    def reset(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
-        observation, info = self.env.reset(**kwargs)
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[dict[str, Any], dict[str, Any]]:
+        """The episode of `seed`; lerobot-eval's rollout mark is taken off `options`, and
+        any other option is refused by the environment as ever."""
+        ours = options
+        if isinstance(options, dict) and NEW_ROLLOUT_OPTION in options:
+            ours = {k: v for k, v in options.items() if k != NEW_ROLLOUT_OPTION}
+        observation, info = self.env.reset(seed=seed, options=ours)
         return lerobot_keys(observation, self.units), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
