@@ -30,7 +30,8 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = [pytest.mark.physics, pytest.mark.slow]  # starts and stops a Ray cluster
+# It starts and stops a Ray cluster: one Ray at a time under pytest-xdist (.ci/run).
+pytestmark = [pytest.mark.physics, pytest.mark.slow, pytest.mark.xdist_group("ray")]
 
 GRID = ["--structure", "pyramid-even", "--layers", "1", "--friction", "0.6,0.8", "--workers", "2"]
 FRICTIONS = ["0.6", "0.8"]

@@ -197,6 +197,7 @@ def test_a_killed_sweep_resumes_to_exactly_one_row_per_run(tmp_path):
 
 @pytest.mark.physics
 @pytest.mark.slow  # starts a local Ray instance
+@pytest.mark.xdist_group("ray")  # one Ray at a time under pytest-xdist (.ci/run)
 def test_ray_gives_the_same_rows_as_processes(tmp_path):
     """The local Ray instance writes its token under HOME and its session under RAY_TMPDIR:
     both are this test's own folders (the session's sockets need a short path)."""

@@ -268,6 +268,7 @@ def test_a_recording_on_ray_without_ray_is_refused_writing_nothing(monkeypatch, 
 
 
 @pytest.mark.slow  # starts a local Ray instance
+@pytest.mark.xdist_group("ray")  # one Ray at a time under pytest-xdist (.ci/run)
 def test_episodes_filmed_as_ray_tasks_make_the_serial_runs_dataset(dataset, tmp_path):
     """Ray tasks film the episodes on their nodes and ship the files back; the dataset is the
     one filmed here. The local Ray instance keeps its token under HOME and its session under
