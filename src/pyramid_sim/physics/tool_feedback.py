@@ -2,18 +2,19 @@
 centre is really at its pose, and a slow integral of the remaining error shifts where the IK
 aims, so a steady error between command and arm (an offset a policy or DART's noise adds, a
 servo's sag) is worked away at the end of each move. Setting a brick down, the error is the
-brick's from its target across the table (its grip's offset included), so the brick, not the
-hand, comes to where it belongs."""
+brick's from its target across the table and in yaw (its grip's offset and a turn in the
+fingers included), so the brick, not the hand, comes to where it belongs."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..choices import Arm
-from ..core.poses import Pose
+from ..core.poses import Pose, wrap_angle, yaw_of
 from . import names as c
 
 if TYPE_CHECKING:
@@ -21,6 +22,7 @@ if TYPE_CHECKING:
 
 TIME_CONSTANT = 0.2  # s of the integral: slower than the motion generator and servos' lag
 CAP = 0.02  # m: the most the aim is shifted, each axis
+TURN_CAP = 0.1  # rad: the most the aim is turned, setting a brick down
 PATIENCE = 1.0  # s after a move's path ends before the IK's own error is enough again
 PLACING = ("servo", "release")  # the steps that set a carried brick down
 REST_SPEED = 0.01  # m/s: a tool slower than this has settled; a lag still closing is no error
@@ -36,7 +38,9 @@ class ToolFeedback:
         self.dt = loop.config.motion.control_dt
         self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
         self._ik_error = {a: loop.ik.error_of(a) for a in c.ARMS}
+        self._half_length = loop.config.brick.length / 2  # a turn's error at the brick's ends
         self.bias = {a: np.zeros(3) for a in c.ARMS}
+        self.turn = {a: 0.0 for a in c.ARMS}  # rad, the aim's yaw shift for the brick held
         self._waited = {a: 0.0 for a in c.ARMS}
         self._step: dict[Arm, object] = {a: None for a in c.ARMS}
         self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
@@ -44,19 +48,37 @@ class ToolFeedback:
 
     def aim(self, arm: Arm, pose: Pose) -> Pose:
         """Where the IK aims for the arm's tool to come to `pose`."""
-        return pose.moved(*self.bias[arm])
+        shifted = pose.moved(*self.bias[arm])
+        return shifted.with_yaw(shifted.yaw + self.turn[arm]) if self.turn[arm] else shifted
+
+    def _placing(self, arm: Arm) -> tuple[int, int] | None:
+        """The (slot, brick) the arm is setting down, if it is."""
+        step, held = self.dispatch.runners[arm].current, self._held[arm]
+        return held if held is not None and step is not None and step.name in PLACING else None
 
     def _miss(self, arm: Arm) -> np.ndarray:
         """How far the tool is from its pose (m); setting a brick down, across the table the
         brick's from its target."""
         miss = self.dispatch.runners[arm].pose.position - self.data.site_xpos[self.sites[arm]]
-        step, held = self.dispatch.runners[arm].current, self._held[arm]
-        if held is not None and step is not None and step.name in PLACING:
-            slot, brick = held
-            body = self.custody.handles.brick_body[slot]
+        placing = self._placing(arm)
+        if placing is not None:
+            slot, brick = placing
             target = self._targets[brick]
-            miss[:2] = (target.x, target.y) - self.data.xpos[body][:2]
+            miss[:2] = (target.x, target.y) - self.data.xpos[self.custody.handles.brick_body[slot]][
+                :2
+            ]
         return miss
+
+    def _turn_miss(self, arm: Arm) -> float:
+        """The yaw (rad) the brick being set down lacks to its target's (a brick turned half
+        round lies the same); 0 when the arm sets none down."""
+        placing = self._placing(arm)
+        if placing is None:
+            return 0.0
+        slot, brick = placing
+        rotation = self.data.xmat[self.custody.handles.brick_body[slot]].reshape(3, 3)
+        miss = wrap_angle(self._targets[brick].yaw - yaw_of(rotation))
+        return miss - math.pi * round(miss / math.pi)
 
     def update(self) -> None:
         """One control step: each arm meant to stand still (a move's path run, a grip, a
@@ -65,6 +87,8 @@ class ToolFeedback:
         for arm in c.ARMS:
             runner, carry = self.dispatch.runners[arm], self.custody.carry[arm]
             if carry is not None:
+                if self._held[arm] != (carry.slot, carry.index):
+                    self.turn[arm] = 0.0  # a new grip: its own turn in the fingers
                 self._held[arm] = (carry.slot, carry.index)
             elif runner.current is None or runner.current.name not in PLACING:
                 self._held[arm] = None
@@ -80,18 +104,22 @@ class ToolFeedback:
             self._waited[arm] += self.dt
             if speed > REST_SPEED:  # still arriving: what is left may be the lag, not an offset
                 continue
-            shifted = self.bias[arm] + self._miss(arm) * (self.dt / TIME_CONSTANT)
-            self.bias[arm] = np.clip(shifted, -CAP, CAP)
+            gain = self.dt / TIME_CONSTANT
+            self.bias[arm] = np.clip(self.bias[arm] + self._miss(arm) * gain, -CAP, CAP)
+            turned = self.turn[arm] + self._turn_miss(arm) * gain
+            self.turn[arm] = float(np.clip(turned, -TURN_CAP, TURN_CAP))
 
     def error_of(self, arm: Arm) -> Callable[[], float]:
         """The arm's measured position error (m), asked once a move's path has run its
-        course. Past PATIENCE the IK's error stands in (an arm held off its pose by contact
-        would never end the move otherwise)."""
+        course; setting a brick down, its turn counts as the distance its ends are off. Past
+        PATIENCE the IK's error stands in (an arm held off its pose by contact would never end
+        the move otherwise)."""
 
         def error() -> float:
             if self._waited[arm] > PATIENCE:
                 return self._ik_error[arm]()
-            return float(np.linalg.norm(self._miss(arm)))
+            ends = self._turn_miss(arm) * self._half_length
+            return float(np.sqrt(np.sum(self._miss(arm) ** 2) + ends**2))
 
         return error
 
