@@ -182,6 +182,7 @@ RECORD_KEYWORDS = (
     "backend",
     "ray_address",
     "noise",
+    "action_mode",
     "on_frame",
     "on_episode",
     "arms",
@@ -204,6 +205,7 @@ def record(
     backend: str = "process",
     ray_address: str | None = None,
     noise: float = 0.0,
+    action_mode: str = "joint",
     on_frame: Any = None,
     on_episode: Any = None,
     config: SimConfig | None = None,
@@ -212,15 +214,14 @@ def record(
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
     `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
-    layout or full: learning/variation.py) with its `randomize` parts;
-    `workers` episodes at once, in processes here or as Ray tasks (`backend="ray"`, on the
-    cluster at `ray_address` or a Ray started here). With `noise` (rad), what is executed is
-    the expert's joint targets plus an offset drawn each second, while the label stays the
-    expert's, which plans from where the arm is (DART). Episodes already in `out` are kept and not
-    run again. `on_frame(episode, its frames so far)` hears each frame (with workers, each
-    episode's all at once as it lands), `on_episode(episodes in the dataset)` the count before
-    the first is filmed and after each lands.
-    `options` as for `build`. Returns the `Recorded` summary."""
+    layout or full: learning/variation.py) with its `randomize` parts; `workers` at once, in
+    processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
+    started here). With `noise` (rad), what is executed is the expert's joint targets plus an
+    offset drawn each second, the label the expert's, planned from where the arm is (DART).
+    `action_mode` relative writes each joint's action as its change from the frame's state.
+    Episodes already in `out` are kept. `on_frame(episode, its frames so far)` hears each frame
+    (with workers, an episode's all at once), `on_episode(episodes in the dataset)` the count
+    before the first is filmed and after each lands. `options` as for `build`."""
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     from .learning.record import RecordConfig
 
@@ -240,6 +241,7 @@ def record(
         backend,
         ray_address,
         noise,
+        action_mode,
     )
     _prepare_gl(render=bool(cameras))
     from .learning.record import record as run
@@ -248,7 +250,7 @@ def record(
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
-                     "on_episode", "arms")  # fmt: skip
+                     "action_mode", "on_episode", "arms")  # fmt: skip
 
 
 def evaluate(
@@ -263,6 +265,7 @@ def evaluate(
     seed: int = EVAL_FIRST_SEED,
     video: int = 0,
     max_steps: int | None = None,
+    action_mode: str = "joint",
     on_episode: Any = None,
     config: SimConfig | None = None,
     **options: Any,
@@ -270,7 +273,8 @@ def evaluate(
     """Score `policy` (expert, zero, random, `module:factory`, or a lerobot checkpoint folder)
     on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
-    `out/evaluation.json` and film the first `video` episodes. `options` as for `build`.
+    `out/evaluation.json` and film the first `video` episodes, the policy acting in
+    `action_mode` (joint, relative or ee: as it was trained). `options` as for `build`.
     Returns the `Evaluation` (its scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluate import EvaluateConfig
@@ -286,6 +290,7 @@ def evaluate(
         seed,
         video,
         max_steps,
+        action_mode,
     )
     if video and out is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")

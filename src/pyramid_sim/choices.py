@@ -21,6 +21,10 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 # How much one learning episode differs from the next (learning/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
+# What an environment's action is (learning/contract.py): joint targets, each joint's change
+# from where it is (relative), or each hand's pose change (ee); a recording writes the first two.
+ACTION_MODES = ("joint", "relative", "ee")
+RECORD_ACTION_MODES = ("joint", "relative")
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin
@@ -35,6 +39,8 @@ ENV_ID = "pyramid_sim/Build-v0"
 LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"
 
 __all__ = [
+    "ACTION_MODES",
+    "RECORD_ACTION_MODES",
     "FPS_CHOICES",
     "ENV_ID",
     "LEROBOT_ENV_ID",

@@ -206,6 +206,7 @@ def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
         (["--workers", "0"], "workers: 0 is out of range; accepted 1 to 64"),
         (["--backend", "slurm"], "backend: unknown 'slurm'; accepted process, ray"),
         (["--ray-address", "auto"], "ray address: only with --backend ray"),
+        (["--action-mode", "ee"], "--action-mode: invalid choice: 'ee' (choose from 'joint', "),
     ],
 )
 def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):

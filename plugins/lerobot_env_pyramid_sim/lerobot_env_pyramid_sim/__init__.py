@@ -39,6 +39,7 @@ class PyramidSimEnv(EnvConfig):
     cameras: tuple[str, ...] = RECORD_CAMERAS  # as `record --cameras`
     observation_height: int = RECORD_IMAGE_SIZE[0]
     observation_width: int = RECORD_IMAGE_SIZE[1]
+    action_mode: str = "joint"  # as `record --action-mode`: joint or relative
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 
@@ -82,5 +83,6 @@ class PyramidSimEnv(EnvConfig):
             "fps": self.fps,
             "cameras": tuple(self.cameras),
             "image_size": (self.observation_height, self.observation_width),
+            "action_mode": self.action_mode,
             "max_episode_steps": self.episode_length,
         }

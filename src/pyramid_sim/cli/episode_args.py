@@ -13,8 +13,11 @@ from ..params import EPISODES
 from .args import config_from_args, spec_from_args, whole
 
 
-def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> None:
-    """--episodes, --variation and --fps, as record and evaluate share them."""
+def add_episode_args(
+    p: argparse.ArgumentParser, episodes: int, what: str, modes: tuple[str, ...]
+) -> None:
+    """--episodes, --variation, --fps and --action-mode (of `modes`), as record and evaluate
+    share them."""
     from ..choices import DEFAULT_VARIATION, VARIATIONS
 
     p.add_argument(
@@ -37,6 +40,15 @@ def add_episode_args(p: argparse.ArgumentParser, episodes: int, what: str) -> No
         default=25,
         help="the environment's step rate, a dataset's frames a second (of the 100 Hz "
         "control): 10, 20, 25, 50 or 100 (default 25)",
+    )
+    p.add_argument(
+        "--action-mode",
+        default="joint",
+        choices=modes,
+        help="the action: joint targets, relative (each joint's change from where it is: "
+        "what a learner predicts most precisely)"
+        + (", ee (each hand's pose change)" if "ee" in modes else "")
+        + " (default joint)",
     )
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..choices import EVAL_FIRST_SEED
+from ..choices import ACTION_MODES, EVAL_FIRST_SEED
 from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import MAX_STEPS
@@ -36,7 +36,7 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         "recordings start at 0)",
     )
     add_schedule_arg(p)
-    add_episode_args(p, 10, "episodes scored")
+    add_episode_args(p, 10, "episodes scored", ACTION_MODES)
     p.add_argument(
         "--max-steps",
         type=whole("max steps", MAX_STEPS.whole_text),
@@ -71,6 +71,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             arms=args.arms,
             variation=args.variation,
             fps=args.fps,
+            action_mode=args.action_mode,
             episodes=args.episodes,
             seed=config.seed,
             video=args.video,

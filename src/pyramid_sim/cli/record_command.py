@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..choices import EVAL_FIRST_SEED
+from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES
 from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import IMAGE_SIZE_TEXT, NOISE, WORKERS, parse_whole
@@ -55,7 +55,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         f"{EVAL_FIRST_SEED})",
     )
     add_schedule_arg(p)
-    add_episode_args(p, 1, "whole builds")
+    add_episode_args(p, 1, "whole builds", RECORD_ACTION_MODES)
     p.add_argument(
         "--cameras",
         default=CAMERAS_DEFAULT,
@@ -137,6 +137,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             backend=args.backend,
             ray_address=args.ray_address,
             noise=args.noise,
+            action_mode=args.action_mode,
             config=config,
             **sizes,
         )

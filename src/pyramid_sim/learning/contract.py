@@ -8,9 +8,8 @@ from typing import Any
 
 import gymnasium
 
+from ..choices import ACTION_MODES
 from ..errors import ConfigError
-
-ACTION_MODES = ("joint", "ee")
 
 
 def check_reset_options(options: Any) -> None:
@@ -36,6 +35,6 @@ def require_live_episode(reset_needed: bool, ended: bool) -> None:
 def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
-        raise ConfigError(f"action mode: unknown {action_mode!r}; accepted joint or ee")
+        raise ConfigError(f"action mode: unknown {action_mode!r}; accepted joint, relative or ee")
     if render_mode not in (None, "rgb_array"):
         raise ConfigError(f"render mode: unknown {render_mode!r}; accepted rgb_array")

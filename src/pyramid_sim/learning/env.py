@@ -2,8 +2,9 @@
 
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
 targets and finger gaps (`layout.Layout`), ramped across the control and physics steps it
-spans, or with `action_mode="ee"` each arm's tool-pose change. The environment feeds bricks
-to the spawn spot, and judges placements and failures from what happens, whoever drives it;
+spans (`action_mode="relative"`: each joint's change from where it is; `"ee"`: each arm's
+tool-pose change). The environment feeds bricks to the spawn spot, and judges placements and
+failures from what happens, whoever drives it;
 `ExpertPolicy` (`expert_action()`) is the scripted builder (scheduler, primitives, mink IK)
 as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
 structure stands, and at `full` the physical and visual randomization) from its seed: `reset(
@@ -18,7 +19,6 @@ warnings, the expert giving a brick up); truncated at the build's time limit.
 from __future__ import annotations
 
 from collections.abc import Callable
-from copy import deepcopy
 from typing import Any
 
 import gymnasium
@@ -27,20 +27,20 @@ import numpy as np
 
 from ..choices import ArmChoice
 from ..options import resolve
-from ..output.judge import judge
 from ..physics.loop import BuildLoop
 from ..physics.motion_generator import arm_motion
 from ..physics.stops import no_motion_reason
 from . import layout as lay
 from . import randomize as rnd
+from . import relative_actions as rel
 from . import variation as var
 from .contract import check_modes, check_reset_options, require_live_episode
 from .ee_control import end_effector
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
-from .footprints import mark
+from .footprints import draw_goals
 from .lerobot_units import lerobot_units
-from .outcome import PlacementWatch, episode_failure
+from .outcome import PlacementWatch, episode_failure, episode_info
 from .spaces import checked_action, goals, joint_space, observation_space, renderer
 from .target_spline import spline_ramp
 
@@ -105,7 +105,8 @@ class BuildEnv(gymnasium.Env):
         self.lerobot_units = lerobot_units(robot, self.layout.names)
         self.ee = end_effector(self.config, self.layout, self.control_steps)
         self.generator = arm_motion(self.config)
-        self.action_space = self.ee.space if action_mode == "ee" else joint_space(self.layout)
+        spaces = {"ee": self.ee.space, "relative": rel.relative_space(self.layout)}
+        self.action_space = spaces.get(action_mode, joint_space(self.layout))
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
         self.observation_space = observation_space(
@@ -159,23 +160,14 @@ class BuildEnv(gymnasium.Env):
         require_live_episode(self._reset_needed, self.ended)
         names = self.ee.names if self.action_mode == "ee" else self.layout.names
         target = checked_action(action, self._low, self._high, names)
+        if self.action_mode == "relative":
+            target = rel.absolute(target, self.measured_state(), self.layout)
         self.steps_taken += 1
-        loop, steps = self._loop, self.control_steps
-        failure: str | None = None
-        newly = 0
         ramp = None
-        if self.action_mode == "joint" and not self.limit_commands:
+        if self.action_mode != "ee" and not self.limit_commands:
             ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
-        for k in range(1, steps + 1):
-            try:
-                failure = loop.apply(command_at(self, target, ramp, k / steps))
-            except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
-                failure = no_motion_reason(loop.data.time)
-            newly += self.placing.update(loop)
-            self._steps += 1
-            failure = failure or episode_failure(loop, self._steps % CHECK_EVERY == 0)
-            if failure is not None or self.placing.count == len(self.plan.bricks):
-                break
+        failure, newly = run_control_steps(self, target, ramp)
+        loop = self._loop
         self.generator.lag()  # its peak is the episode's (0 where it is not used)
         success = self.placing.count == len(self.plan.bricks)
         truncated = not success and loop.data.time > self.config.max_sim_time
@@ -220,12 +212,19 @@ class BuildEnv(gymnasium.Env):
         if self.action_mode == "ee":
             return self.ee.hold(self._loop).astype(np.float32)
         loop = self._loop
-        return loop.data.ctrl[loop.handles.ctrl_index].astype(np.float32)
+        held = loop.data.ctrl[loop.handles.ctrl_index]
+        if self.action_mode == "relative":
+            return rel.relative(held, self.measured_state(), self.layout)
+        return held.astype(np.float32)
+
+    def measured_state(self) -> np.ndarray:
+        """Both arms' joint positions and finger gaps as measured now (the state's layout)."""
+        return lay.state(self._loop.data, self._loop.handles, self._state).copy()
 
     def _observe(self) -> dict[str, Any]:
         loop = self._loop
         observed: dict[str, Any] = {
-            "state": lay.state(loop.data, loop.handles, self._state).copy(),
+            "state": self.measured_state(),
             "bricks": loop.data.qpos[self._brick_q],
             "goals": self.goals.copy(),
         }
@@ -251,6 +250,27 @@ class BuildEnv(gymnasium.Env):
         return self._loop
 
 
+def run_control_steps(
+    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None
+) -> tuple[str | None, int]:
+    """One environment step's control steps toward `target`: why the episode failed, if it
+    did, and how many targets newly hold a brick."""
+    loop, steps = env.loop, env.control_steps
+    failure: str | None = None
+    newly = 0
+    for k in range(1, steps + 1):
+        try:
+            failure = loop.apply(command_at(env, target, ramp, k / steps))
+        except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
+            failure = no_motion_reason(loop.data.time)
+        newly += env.placing.update(loop)
+        env._steps += 1
+        failure = failure or episode_failure(loop, env._steps % CHECK_EVERY == 0)
+        if failure is not None or env.placing.count == len(env.plan.bricks):
+            break
+    return failure, newly
+
+
 def command_at(
     env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None, share: float
 ) -> np.ndarray:
@@ -259,33 +279,3 @@ def command_at(
     if env.action_mode == "ee":
         return env.ee.command(env.loop, target)
     return env.generator.step(target) if ramp is None else ramp(share)
-
-
-def draw_goals(env: BuildEnv, scene: Any) -> None:
-    """The targets' footprint on the table of a rendered scene, if the environment marks it."""
-    if env.footprints:
-        config = env.loop.config
-        mark(scene, env.goals, config.brick.length, config.brick.width, config.layout.table_top_z)
-
-
-def episode_info(env: BuildEnv, failure: str | None, success: bool | None) -> dict[str, Any]:
-    """The same keys after reset and every step; `result` (result.json's document) once
-    the episode has ended, empty before (a dict either way: a vector env gathers infos by
-    their type)."""
-    loop = env.loop
-    result: dict[str, Any] = {}
-    if env.ended:
-        loop.custody.slot_of.update(
-            {i: s for i, s in env.placing.placed.items() if i not in loop.custody.slot_of}
-        )
-        result = judge(loop.finish(failure, 0.0), loop.config).to_dict()
-    return {
-        "sim_time_s": float(loop.data.time),
-        "bricks_placed": env.placing.count,
-        "failure": failure,
-        "is_success": bool(success),
-        "command_lag": env.generator.peak_lag,
-        "seed": env.seed_of_episode,
-        "randomization": deepcopy(env.drawn),
-        "result": result,
-    }

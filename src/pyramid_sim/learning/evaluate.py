@@ -52,6 +52,7 @@ class EvaluateConfig:
     first_seed: int = EVAL_SEED
     videos: int = 0  # the first episodes filmed from the overview camera
     max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
+    action_mode: str = "joint"  # the policy's: joint, relative or ee
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
@@ -149,6 +150,7 @@ def evaluate(
         variation=config.variation,
         fps=config.fps,
         render_mode="rgb_array" if config.videos else None,
+        action_mode=config.action_mode,
         **config.options,
     )
     limit = config.max_steps or step_limit(len(built.plan.bricks), config.fps)
@@ -178,6 +180,7 @@ def evaluate(
             "variation": config.variation,
             "fps": config.fps,
             "limit_commands": built.limit_commands,
+            "action_mode": config.action_mode,
             "max_steps": limit,
         },
         "inputs": {**asdict(config), "options": _plain(config.options)},

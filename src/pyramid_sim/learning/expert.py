@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..physics.tool_feedback import close_loop, take_over
+from .relative_actions import relative
 
 if TYPE_CHECKING:
     from ..physics.loop import BuildLoop
@@ -62,8 +63,12 @@ class ExpertPolicy:
         if command is not None:
             self._last = command
         elif self._last is None:  # built before it moved: hold what is commanded
-            self._last = env.held_command()
-        return self._last  # once built, where it last aimed (not where a noise took it)
+            loop_ctrl = loop.data.ctrl[loop.handles.ctrl_index]
+            self._last = loop_ctrl.astype(np.float32)
+        # once built, where it last aimed (not where a noise took it)
+        if env.action_mode == "relative":  # the same target, from where the joints are
+            return relative(self._last, env.measured_state(), env.layout)
+        return self._last
 
     def _end_effector(self, loop: BuildLoop) -> np.ndarray:
         env = self.env

@@ -28,6 +28,7 @@ def make_env(config: RecordConfig) -> BuildEnv:
         limit_commands=config.limit_commands,
         image_size=config.image_size,
         randomize=config.randomize,
+        action_mode=config.action_mode,
         **config.options,
     )
 

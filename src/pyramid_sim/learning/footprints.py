@@ -30,3 +30,11 @@ def mark(scene: Any, goals: np.ndarray, length: float, width: float, table_top: 
             RGBA,
         )
         scene.ngeom += 1
+
+
+def draw_goals(env: Any, scene: Any) -> None:
+    """The targets' footprint on the table of a rendered scene of `env` (a BuildEnv), if the
+    environment marks it."""
+    if env.footprints:
+        config = env.loop.config
+        mark(scene, env.goals, config.brick.length, config.brick.width, config.layout.table_top_z)

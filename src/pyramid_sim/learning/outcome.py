@@ -5,10 +5,12 @@ hold a brick at rest (the reward), and failures the build's own stops do not end
 from __future__ import annotations
 
 import math
+from copy import deepcopy
+from typing import Any
 
 import numpy as np
 
-from ..output.judge import placement_errors, within
+from ..output.judge import judge, placement_errors, within
 from ..output.result import Tolerances
 from ..physics.loop import BuildLoop
 from .layout import brick_index
@@ -75,3 +77,26 @@ def episode_failure(loop: BuildLoop, reduce: bool) -> str | None:
         if z < top - OFF_TABLE or not math.isfinite(z):
             return f"a brick (magazine slot {slot}) left the table"
     return None
+
+
+def episode_info(env: Any, failure: str | None, success: bool | None) -> dict[str, Any]:
+    """A BuildEnv's info, the same keys after reset and every step; `result` (result.json's
+    document) once the episode has ended, empty before (a dict either way: a vector env
+    gathers infos by their type)."""
+    loop = env.loop
+    result: dict[str, Any] = {}
+    if env.ended:
+        loop.custody.slot_of.update(
+            {i: s for i, s in env.placing.placed.items() if i not in loop.custody.slot_of}
+        )
+        result = judge(loop.finish(failure, 0.0), loop.config).to_dict()
+    return {
+        "sim_time_s": float(loop.data.time),
+        "bricks_placed": env.placing.count,
+        "failure": failure,
+        "is_success": bool(success),
+        "command_lag": env.generator.peak_lag,
+        "seed": env.seed_of_episode,
+        "randomization": deepcopy(env.drawn),
+        "result": result,
+    }

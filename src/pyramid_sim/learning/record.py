@@ -39,6 +39,8 @@ RECORDS = "meta/pyramid_sim"  # pyramid_sim's own files, where lerobot does not 
 DATASET_DOC = f"{RECORDS}/dataset.json"
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
 RUN_ONLY = ("episodes", "workers", "backend", "ray_address")
+# Settings added since the first recordings, as an episode recorded before them had them.
+LATER_SETTINGS = {"action_mode": "joint"}
 
 
 def _records(root: Path) -> dict[int, dict[str, Any]]:
@@ -224,6 +226,7 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "variation": config.variation,
         "randomize": list(env.randomize),
         "limit_commands": config.limit_commands,
+        "action_mode": config.action_mode,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
 
@@ -236,7 +239,7 @@ def _check_same_recording(
     parts, first seed, command limits): each shapes the files, and a dataset is one recording."""
     wanted = _settings(config)
     for index, rec in sorted(records.items()):
-        kept = rec.get("config", {})
+        kept = {**LATER_SETTINGS, **rec.get("config", {})}
         for name in wanted:
             if name in RUN_ONLY or kept.get(name) == wanted[name]:
                 continue

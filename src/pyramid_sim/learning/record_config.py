@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..choices import RECORD_CAMERAS, RECORD_IMAGE_SIZE
+from ..choices import RECORD_ACTION_MODES, RECORD_CAMERAS, RECORD_IMAGE_SIZE
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
@@ -34,6 +34,7 @@ class RecordConfig:
     backend: str = "process"  # or ray: the episodes as Ray tasks
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
     noise: float = 0.0  # rad: DART's offset on the executed joints, the expert's own the label
+    action_mode: str = "joint"  # or relative: each joint's action its change from the state
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
@@ -43,6 +44,11 @@ class RecordConfig:
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
         NOISE.check(self.noise)
+        if self.action_mode not in RECORD_ACTION_MODES:
+            raise ConfigError(
+                f"action mode: {self.action_mode!r} is not recorded; accepted "
+                + " or ".join(RECORD_ACTION_MODES)
+            )
         if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
             raise ConfigError(
                 f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "
