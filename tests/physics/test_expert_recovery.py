@@ -85,8 +85,35 @@ def test_the_goal_is_observed_and_moves_with_the_layout():
     assert np.abs(other["goals"][:, :2] - obs["goals"][:, :2]).max() > 0.005
     names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
     state = environment_state(other)
-    assert len(names) == len(state) and names[-4:] == ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
-    assert state[-4] == np.float32(other["goals"][1][0])
+    goal = ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
+    assert len(names) == len(state) and names[-12:-8] == goal
+    assert state[-12] == np.float32(other["goals"][1][0])
+    env.close()
+
+
+def test_the_hands_tool_poses_are_observed_where_the_tool_sites_are():
+    """Each hand's tool centre and yaw, as a real arm's forward kinematics reports it: a
+    learner need not learn the arm's kinematics to relate its hand to a brick."""
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    obs, _ = env.reset(seed=1)
+    for row, arm in enumerate(("left", "right")):  # the IK's kinematics, at the same joints
+        pose = env.loop.ik.tcp_pose(arm)
+        np.testing.assert_allclose(obs["tools"][row], [*pose.position, pose.yaw], atol=1e-3)
+    spot = np.array(env.plan.spawn.position[:2])
+    start = np.linalg.norm(obs["tools"][0, :2] - spot)
+    for _ in range(50):  # the left hand on its way to the spot
+        obs, *_ = env.step(env.expert_action())
+    np.testing.assert_allclose(
+        obs["tools"][0, :3], env.loop.data.site_xpos[env.loop.handles.tcp_site["left"]]
+    )
+    assert np.linalg.norm(obs["tools"][0, :2] - spot) < start / 2
+    names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
+    assert names[-8:] == tuple(
+        f"{a}_tool.{f}" for a in ("left", "right") for f in "x y z yaw".split()
+    )
+    np.testing.assert_array_equal(
+        environment_state(obs)[-8:], obs["tools"].ravel().astype(np.float32)
+    )
     env.close()
 
 

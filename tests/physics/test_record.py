@@ -52,11 +52,17 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     assert info["features"]["observation.state"]["shape"] == [16]
     # A state-only policy learns from where the bricks are; lerobot's sims carry next.success.
     environment = info["features"]["observation.environment_state"]
-    assert environment["shape"] == [4 * 7 + 4] and environment["names"][:2] == [
+    assert environment["shape"] == [4 * 7 + 4 + 8] and environment["names"][:2] == [
         "brick0.x",
         "brick0.y",
     ]
-    assert environment["names"][-4:] == ["goal0.x", "goal0.y", "goal0.z", "goal0.yaw"]
+    assert environment["names"][-12:-8] == ["goal0.x", "goal0.y", "goal0.z", "goal0.yaw"]
+    assert environment["names"][-8:-4] == [
+        "left_tool.x",
+        "left_tool.y",
+        "left_tool.z",
+        "left_tool.yaw",
+    ]
     assert info["features"]["next.success"]["dtype"] == "bool"
     data = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
     assert data["next.success"][-1] is True and not any(data["next.success"][:-1])

@@ -227,6 +227,7 @@ class BuildEnv(gymnasium.Env):
             "state": self.measured_state(),
             "bricks": loop.data.qpos[self._brick_q],
             "goals": self.goals.copy(),
+            "tools": lay.tools(loop.data, loop.handles),
         }
         if self.cameras:
             observed["images"] = self.images(self.cameras)

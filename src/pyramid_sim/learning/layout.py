@@ -11,6 +11,7 @@ import mujoco
 import numpy as np
 
 from ..choices import CAMERAS, FPS_CHOICES
+from ..core.poses import yaw_of
 from ..errors import ConfigError
 from ..params import IMAGE_HEIGHT, IMAGE_SIZE_TEXT, IMAGE_WIDTH
 from ..physics import names as c
@@ -65,6 +66,19 @@ def state(data: mujoco.MjData, handles: SceneHandles, out: np.ndarray) -> np.nda
         out[k] = sum(abs(gain * data.qpos[f]) for f, gain in fingers)
         k += 1
     return out
+
+
+def tools(data: mujoco.MjData, handles: SceneHandles) -> np.ndarray:
+    """Each hand's tool centre and yaw (x, y, z, yaw), left first, as measured now."""
+    return np.array(
+        [
+            [
+                *data.site_xpos[handles.tcp_site[arm]],
+                yaw_of(data.site_xmat[handles.tcp_site[arm]].reshape(3, 3)),
+            ]
+            for arm in c.ARMS
+        ]
+    )
 
 
 def brick_index(handles: SceneHandles) -> np.ndarray:

@@ -8,20 +8,24 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
+from ..choices import ARMS
 from ..errors import ActionError
 from . import layout as lay
-from .observation_names import BRICK_FIELDS, GOAL_FIELDS
+from .observation_names import BRICK_FIELDS, GOAL_FIELDS, TOOL_FIELDS
 
 
 def observation_space(
     layout: lay.Layout, targets: int, cameras: tuple[str, ...], image_size: tuple[int, int]
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the goals (every target's pose,
-    in build order: where the bricks must go), and each camera's image."""
+    in build order: where the bricks must go), the tools (each hand's tool pose, left first:
+    where the hands are, without a learner having to learn the arm's kinematics), and each
+    camera's image."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
         "goals": spaces.Box(-np.inf, np.inf, (targets, len(GOAL_FIELDS)), dtype=np.float64),
+        "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
     }
     if cameras:
         height, width = image_size
@@ -32,11 +36,10 @@ def observation_space(
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
-    """An observation's bricks and goals as one float32 vector, in the order of
+    """An observation's bricks, goals and tools as one float32 vector, in the order of
     `observation_names.environment_names`."""
-    return np.concatenate([observation["bricks"].ravel(), observation["goals"].ravel()]).astype(
-        np.float32
-    )
+    parts = [observation[k].ravel() for k in ("bricks", "goals", "tools")]
+    return np.concatenate(parts).astype(np.float32)
 
 
 def goals(plan: Any) -> np.ndarray:
