@@ -118,9 +118,9 @@ def test_the_structures_place_and_the_feed_spot_vary_by_centimetres_across_seeds
 
 GENERATOR_GAP = pytest.mark.xfail(
     strict=False,
-    reason="a known gap: through the motion generator the expert lost 1 of 6 seeds of the "
-    "6-brick pyramid at layout (seed 0: 1.01 of a torque limit, loop closed or open alike); "
-    "the full level not yet re-measured",
+    reason="a known gap: through the motion generator the expert lost 3 of these 20 seeds of "
+    "the 6-brick pyramid at layout and 2 at full, each at its third pick (the IK's null-space "
+    "drift outruns the generator and a finger lands on the brick: docs/learning.md)",
 )
 
 
@@ -130,7 +130,7 @@ GENERATOR_GAP = pytest.mark.xfail(
 def test_the_expert_builds_at_every_level_over_twenty_seeds(request, variation, structure):
     """The 2-brick and the 6-brick pyramids, 20 seeds each, at the dataset's rate."""
     name, layers = structure
-    if layers == 3 or variation == "full":
+    if layers == 3 and variation != "fixed":
         request.applymarker(GENERATOR_GAP)
     env = gymnasium.make(ENV, structure=name, layers=layers, variation=variation)
     failed = []

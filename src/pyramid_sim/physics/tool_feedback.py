@@ -45,6 +45,7 @@ class ToolFeedback:
         self._step: dict[Arm, object] = {a: None for a in c.ARMS}
         self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
         self._was = {a: self.data.site_xpos[self.sites[a]].copy() for a in c.ARMS}
+        self._speed = {a: 0.0 for a in c.ARMS}  # m/s, the tool's over the last control step
 
     def aim(self, arm: Arm, pose: Pose) -> Pose:
         """Where the IK aims for the arm's tool to come to `pose`."""
@@ -95,7 +96,7 @@ class ToolFeedback:
             if runner.current is not self._step[arm]:
                 self._step[arm], self._waited[arm] = runner.current, 0.0
             tool = self.data.site_xpos[self.sites[arm]]
-            speed = float(np.linalg.norm(tool - self._was[arm])) / self.dt
+            speed = self._speed[arm] = float(np.linalg.norm(tool - self._was[arm])) / self.dt
             self._was[arm] = tool.copy()
             if runner.current is None or not runner.started or runner.time_left() > 0.0:
                 continue
@@ -118,6 +119,8 @@ class ToolFeedback:
         def error() -> float:
             if self._waited[arm] > PATIENCE:
                 return self._ik_error[arm]()
+            if self._speed[arm] > REST_SPEED and self._placing(arm) is not None:
+                return math.inf  # a brick let go from a swaying hand is dragged off its place
             ends = self._turn_miss(arm) * self._half_length
             return float(np.sqrt(np.sum(self._miss(arm) ** 2) + ends**2))
 
