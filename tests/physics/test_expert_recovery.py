@@ -155,3 +155,25 @@ def test_a_steady_offset_is_worked_away_where_the_brick_is_set_down():
     worst = max(b["error_xy_mm"] for b in info["result"]["bricks"])
     assert worst < 5.0
     env.close()
+
+
+def test_a_brick_is_let_go_only_from_a_hand_at_rest_and_within_patience():
+    """Setting a brick down, the release waits while the hand sways (a swaying hand drags
+    the brick as the fingers open); past the patience the IK's own error stands in, so a
+    hand held off its pose still ends its step."""
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    env.reset(seed=0)
+    loop = env.loop
+    while not any(  # the first arm holding its brick over the target, about to let go
+        (s := loop.step_of(a)) is not None and s.name == "release" for a in ("left", "right")
+    ):
+        env.step(env.expert_action())
+    arm = next(a for a in ("left", "right") if loop.step_of(a).name == "release")
+    feedback, error = loop.feedback, loop.arrival[arm]
+    feedback._speed[arm] = 0.0
+    at_rest = error()
+    assert at_rest < 0.01  # the brick's own error, millimetres
+    feedback._speed[arm] = 0.05  # 5 cm/s: swaying
+    assert error() == np.inf
+    feedback._waited[arm] = 1.5  # past the patience: the IK's error, whatever the sway
+    assert error() == loop.ik.error(arm)[0]
