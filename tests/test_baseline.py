@@ -32,3 +32,26 @@ def test_a_recording_where_nothing_built_is_refused_before_training(tmp_path):
         baseline.train(tmp_path, baseline.Recipe())
     assert not (tmp_path / "train.log").exists()
     assert baseline.trained_before(tmp_path) is None  # nothing trained to go on from
+
+
+def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
+    tmp_path, monkeypatch
+):
+    """ACT leaves `observation.environment_state` raw unless ENV is in its normalization
+    mapping: the recipe asks for it (and can leave it out), and the child's CPU seconds are
+    kept beside the log."""
+    _records(tmp_path, [True])
+    commands = []
+
+    def fake_run(command, **_):
+        commands.append(command)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    baseline.train(tmp_path, baseline.Recipe())
+    baseline.train(tmp_path, baseline.Recipe(normalize_environment=False))
+    wanted = [a for a in commands[0] if a.startswith("--policy.normalization_mapping=")]
+    assert len(wanted) == 1 and json.loads(wanted[0].split("=", 1)[1])["ENV"] == "MEAN_STD"
+    assert not [a for a in commands[1] if "normalization_mapping" in a]
+    assert "--policy.use_vae=false" in commands[0] and "--policy.optimizer_lr=0.0003" in commands[0]
+    assert float((tmp_path / "train_cpu_s.txt").read_text()) >= 0

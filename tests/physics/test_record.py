@@ -181,6 +181,23 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
         )
 
 
+def test_a_recording_made_before_action_modes_resumes_as_joint(dataset, tmp_path):
+    """Episode records written before `action_mode` existed hold none: they were joint
+    targets, so a joint run resumes them and a relative one is refused, naming both."""
+    import shutil
+
+    root, _ = dataset
+    copy = tmp_path / "d"
+    shutil.copytree(root, copy)
+    for path in (copy / "meta/pyramid_sim").glob("episode_*.json"):
+        record = json.loads(path.read_text())
+        del record["config"]["action_mode"]
+        path.write_text(json.dumps(record))
+    with pytest.raises(pyramid_sim.ConfigError, match='action_mode "joint", this run "relative"'):
+        _record(copy, 3, action_mode="relative")
+    assert _record(copy, 3).added == 1
+
+
 @pytest.mark.parametrize(
     "changed, words",
     [
