@@ -17,8 +17,6 @@ from __future__ import annotations
 import sys
 import time
 
-import numpy as np
-
 from pyramid_sim.cli.args import EXIT_USAGE, Parser, output_path, whole
 from pyramid_sim.errors import PyramidSimError
 from pyramid_sim.output.files import write_json_atomic
@@ -30,7 +28,7 @@ ROWS = [("none", 0.0), ("noise", 0.002), ("noise", 0.005), ("hold", 5), ("hold",
 def run_row(env, perturbation, seeds: range, limit: int) -> dict:
     from pyramid_sim.learning.perturbations import Perturber
 
-    joints = np.array([not n.endswith("/gripper") for n in env.layout.names])
+    joints = env.layout.joints
     wins, failures, start = 0, {}, time.perf_counter()
     for seed in seeds:
         env.reset(seed=seed)

@@ -23,7 +23,7 @@ def _env(mode: str, variation: str = "fixed"):
 
 
 def _joints(env) -> np.ndarray:
-    return np.array([not n.endswith("/gripper") for n in env.layout.names])
+    return env.layout.joints
 
 
 def test_a_relative_action_is_the_joint_target_less_where_the_joints_are():

@@ -92,7 +92,7 @@ class JointNoise:
 
     def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
         self.scale = scale
-        self.joints = np.array([not n.endswith("/gripper") for n in env.layout.names])
+        self.joints = env.layout.joints
         self.period = max(1, round(NOISE_PERIOD * env.fps))
         self.random = np.random.default_rng([seed, 0xDA27])
         self.offset = np.zeros(len(self.joints))

@@ -35,6 +35,11 @@ class Layout:
     def size(self) -> int:
         return len(self.names)
 
+    @property
+    def joints(self) -> np.ndarray:
+        """True at the arm joints' entries, False at the finger gaps'."""
+        return np.array([not name.endswith("/gripper") for name in self.names])
+
 
 def layout(model: mujoco.MjModel, handles: SceneHandles, robot: RobotDescription) -> Layout:
     """The layout of a compiled scene: each arm's joints at their joint ranges, then its

@@ -16,15 +16,10 @@ from gymnasium import spaces
 from .layout import Layout
 
 
-def joint_entries(layout: Layout) -> np.ndarray:
-    """Where the arm joints lie in the action and the state (the finger gaps elsewhere)."""
-    return np.array([i for i, name in enumerate(layout.names) if not name.endswith("/gripper")])
-
-
 def relative_space(layout: Layout) -> spaces.Box:
     """Each joint's change within its range's span either way; the gaps within their travel."""
     low, high = layout.low.copy(), layout.high.copy()
-    joints = joint_entries(layout)
+    joints = layout.joints
     span = layout.high[joints] - layout.low[joints]
     low[joints], high[joints] = -span, span
     return spaces.Box(low.astype(np.float32), high.astype(np.float32), dtype=np.float32)
@@ -32,7 +27,7 @@ def relative_space(layout: Layout) -> spaces.Box:
 
 def absolute(action: np.ndarray, state: np.ndarray, layout: Layout) -> np.ndarray:
     """The joint target of a relative `action` taken at `state`, within the joints' ranges."""
-    joints = joint_entries(layout)
+    joints = layout.joints
     target = np.array(action, dtype=np.float64)
     target[joints] += state[joints]
     return np.clip(target, layout.low, layout.high)
@@ -40,7 +35,7 @@ def absolute(action: np.ndarray, state: np.ndarray, layout: Layout) -> np.ndarra
 
 def relative(target: np.ndarray, state: np.ndarray, layout: Layout) -> np.ndarray:
     """The relative action that commands the joint `target` from `state` (float32)."""
-    joints = joint_entries(layout)
+    joints = layout.joints
     action = np.array(target, dtype=np.float64)
     action[joints] -= state[joints]
     return action.astype(np.float32)
