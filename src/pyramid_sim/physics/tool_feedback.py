@@ -64,10 +64,8 @@ class ToolFeedback:
         placing = self._placing(arm)
         if placing is not None:
             slot, brick = placing
-            target = self._targets[brick]
-            miss[:2] = (target.x, target.y) - self.data.xpos[self.custody.handles.brick_body[slot]][
-                :2
-            ]
+            target, body = self._targets[brick], self.custody.handles.brick_body[slot]
+            miss[:2] = (target.x, target.y) - self.data.xpos[body][:2]
         return miss
 
     def _turn_miss(self, arm: Arm) -> float:
