@@ -11,6 +11,8 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
+from pyramid_sim.learning.expert import LEAD
+from pyramid_sim.learning.relative_actions import led
 
 pytestmark = pytest.mark.physics
 TASK = {"structure": "pyramid-even", "layers": 1}
@@ -111,3 +113,39 @@ def test_evaluate_scores_a_policy_in_its_action_mode(tmp_path):
     with pytest.raises(pyramid_sim.ConfigError, match="accepted joint or relative"):
         pyramid_sim.record(tmp_path / "r", "pyramid-even", layers=1, cameras=(), action_mode="ee")
     assert not (tmp_path / "r").exists()
+
+
+def test_a_target_far_ahead_is_brought_within_the_lead_along_its_way():
+    env = _env("relative")
+    observation, _ = env.reset(seed=0)
+    state, joints = observation["state"], _joints(env)
+    far = state.copy()
+    far[joints] += np.linspace(-0.5, 1.0, joints.sum())
+    far[~joints] = 0.01  # the gaps: not an arm's lead
+    near = led(far, state, env.layout, 0.2)
+    change = near[joints] - state[joints]
+    assert np.abs(change).max() == pytest.approx(0.2)
+    np.testing.assert_allclose(change / 0.2, (far - state)[joints] / 1.0)  # the same way
+    assert np.array_equal(near[~joints], far[~joints])
+    within = state.copy()
+    within[joints] += 0.05
+    assert np.array_equal(led(within, state, env.layout, 0.2), within)
+
+
+@pytest.mark.parametrize("mode", ["joint", "relative"])
+def test_the_experts_targets_never_lead_the_arm_by_more_than_its_lead(mode):
+    env = _env(mode, "layout")
+    observation, _ = env.reset(seed=3)
+    joints, ahead, led_ahead = _joints(env), 0.0, 0.0
+    expert = env._expert
+    while True:
+        action = env.expert_action().astype(np.float64)
+        target = action if mode == "joint" else action + np.where(joints, observation["state"], 0)
+        led_ahead = max(led_ahead, np.abs(target - observation["state"])[joints].max())
+        ahead = max(ahead, np.abs(expert._last - observation["state"])[joints].max())
+        observation, _, terminated, truncated, info = env.step(action.astype(np.float32))
+        if terminated or truncated:
+            break
+    assert info["is_success"]
+    assert ahead > 2 * LEAD  # the IK ran ahead of the arm ...
+    assert led_ahead <= LEAD + 1e-5  # ... and the targets asked for did not

@@ -13,11 +13,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..physics.tool_feedback import close_loop, take_over
-from .relative_actions import relative
+from .relative_actions import led, relative
 
 if TYPE_CHECKING:
     from ..physics.loop import BuildLoop
     from .env import BuildEnv
+
+# rad: the most an arm joint's target leads where the joint is, with the motion generator on
+# (relative_actions.led says why; docs/learning.md has the measurements)
+LEAD = 0.2
 
 
 class ExpertPolicy:
@@ -66,9 +70,13 @@ class ExpertPolicy:
             loop_ctrl = loop.data.ctrl[loop.handles.ctrl_index]
             self._last = loop_ctrl.astype(np.float32)
         # once built, where it last aimed (not where a noise took it)
+        if not env.limit_commands:
+            target = self._last
+        else:  # no further ahead of the arm than LEAD
+            target = led(self._last, env.measured_state(), env.layout, LEAD).astype(np.float32)
         if env.action_mode == "relative":  # the same target, from where the joints are
-            return relative(self._last, env.measured_state(), env.layout)
-        return self._last
+            return relative(target, env.measured_state(), env.layout)
+        return target
 
     def _end_effector(self, loop: BuildLoop) -> np.ndarray:
         env = self.env

@@ -39,3 +39,20 @@ def relative(target: np.ndarray, state: np.ndarray, layout: Layout) -> np.ndarra
     action = np.array(target, dtype=np.float64)
     action[joints] -= state[joints]
     return action.astype(np.float32)
+
+
+def led(target: np.ndarray, state: np.ndarray, layout: Layout, lead: float) -> np.ndarray:
+    """The joint `target` brought toward `state` along the line between them, so that no arm
+    joint leads its measured position by more than `lead` (rad); the gaps as they are.
+
+    Why: an IK that runs ahead of the arm (the motion generator limits the arm's acceleration,
+    the IK does not) asks for targets whose lead grows with the time since a move began, which
+    no observation shows; a learner copying them cannot tell how far ahead to aim. A lead held
+    within `lead` points the same way and depends only on where the arm is and where it goes."""
+    joints = layout.joints
+    capped = np.array(target, dtype=np.float64)
+    change = capped[joints] - state[joints]
+    most = float(np.max(np.abs(change))) if change.size else 0.0
+    if most > lead:
+        capped[joints] = state[joints] + change * (lead / most)
+    return capped
