@@ -277,6 +277,7 @@ def command_at(
 ) -> np.ndarray:
     """The command for one control step, `share` through an environment step toward `target`:
     the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
-    if env.action_mode == "ee":
-        return env.ee.command(env.loop, target)
+    if env.action_mode == "ee":  # the IK's joints, through the generator as a joint target
+        command = env.ee.command(env.loop, target)
+        return env.generator.step(command) if env.limit_commands else command
     return env.generator.step(target) if ramp is None else ramp(share)
