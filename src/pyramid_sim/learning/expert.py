@@ -19,8 +19,9 @@ if TYPE_CHECKING:
     from ..physics.loop import BuildLoop
     from .env import BuildEnv
 
-# rad: the most an arm joint's target leads where the joint is, with the motion generator on
-# (relative_actions.led says why; docs/learning.md has the measurements)
+# rad: the most a relative action moves an arm joint, with the motion generator on
+# (relative_actions.led says why; docs/learning.md has the measurements, and why joint
+# actions keep the IK's whole lead: a held absolute target that near stops the arm)
 LEAD = 0.2
 
 
@@ -70,13 +71,12 @@ class ExpertPolicy:
             loop_ctrl = loop.data.ctrl[loop.handles.ctrl_index]
             self._last = loop_ctrl.astype(np.float32)
         # once built, where it last aimed (not where a noise took it)
-        if not env.limit_commands:
-            target = self._last
-        else:  # no further ahead of the arm than LEAD
-            target = led(self._last, env.measured_state(), env.layout, LEAD).astype(np.float32)
-        if env.action_mode == "relative":  # the same target, from where the joints are
-            return relative(target, env.measured_state(), env.layout)
-        return target
+        if env.action_mode == "relative":  # the target, from where the joints are ...
+            state = env.measured_state()
+            if env.limit_commands:  # ... no further ahead of them than LEAD
+                return relative(led(self._last, state, env.layout, LEAD), state, env.layout)
+            return relative(self._last, state, env.layout)
+        return self._last
 
     def _end_effector(self, loop: BuildLoop) -> np.ndarray:
         env = self.env
