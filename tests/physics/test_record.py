@@ -462,7 +462,10 @@ def test_ctrl_c_during_a_parallel_recording_stops_at_once_and_leaves_nothing(tmp
     start = time.monotonic()
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=30)
-    assert time.monotonic() - start < 5.0, err  # it took 13-15 s, waiting for the workers
+    # Waiting for the workers took 13-15 s on an idle machine; stopping at once takes 1-3 s,
+    # 6.5 s once with three busy processes beside it (and 10 s with five), so the bound is
+    # the one that still tells the two apart.
+    assert time.monotonic() - start < 10.0, err
     assert proc.returncode == 130 and "Traceback" not in err
     assert not out.exists(), sorted(str(p) for p in out.rglob("*"))
 
