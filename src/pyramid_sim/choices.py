@@ -22,9 +22,12 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
 # What an environment's action is (learning/contract.py): joint targets, each joint's change
-# from where it is (relative), or each hand's pose change (ee); a recording writes the first two.
-ACTION_MODES = ("joint", "relative", "ee")
-RECORD_ACTION_MODES = ("joint", "relative")
+# from where it is (relative), each hand's pose change (ee), or the pose each hand goes to
+# (waypoint); a recording writes all but ee. The last two are hand poses, turned into joints by
+# the IK.
+ACTION_MODES = ("joint", "relative", "ee", "waypoint")
+RECORD_ACTION_MODES = ("joint", "relative", "waypoint")
+HAND_ACTION_MODES = ("ee", "waypoint")
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin
@@ -41,6 +44,7 @@ LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"
 __all__ = [
     "ACTION_MODES",
     "RECORD_ACTION_MODES",
+    "HAND_ACTION_MODES",
     "FPS_CHOICES",
     "ENV_ID",
     "LEROBOT_ENV_ID",

@@ -91,6 +91,16 @@ class ArmRunner:
                 self.pose, step.pose, step.speed, motion.turn_rate, step.transit
             )
 
+    @property
+    def path(self) -> Path | None:
+        """The current move's path (None for a gripper step or none)."""
+        return self._segment
+
+    @property
+    def elapsed(self) -> float:
+        """Seconds the current step has run."""
+        return self._t
+
     def time_left(self) -> float:
         """Seconds until the current move's path ends (0 for a gripper step or none)."""
         return 0.0 if self._segment is None else max(0.0, self._segment.duration - self._t)

@@ -85,6 +85,15 @@ class Path:
     def at(self, t: float) -> Pose:
         return self._position(t).with_yaw(self.turn.at(t).yaw)
 
+    def heading(self, t: float) -> Pose:
+        """Where the segment under way at time t ends (the last one's end once all have run):
+        the corner the hand heads for, at the start's yaw."""
+        for segment in self.segments:
+            if t < segment.duration:
+                return segment.end
+            t -= segment.duration
+        return self.segments[-1].end
+
     def _position(self, t: float) -> Pose:
         for segment in self.segments:
             if t < segment.duration:

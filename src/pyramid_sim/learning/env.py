@@ -25,7 +25,7 @@ import gymnasium
 import mink
 import numpy as np
 
-from ..choices import ArmChoice
+from ..choices import HAND_ACTION_MODES, ArmChoice
 from ..options import resolve
 from ..physics.loop import BuildLoop
 from ..physics.motion_generator import arm_motion
@@ -39,10 +39,11 @@ from .ee_control import end_effector
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
 from .footprints import draw_goals
-from .lerobot_units import lerobot_units
+from .lerobot_units import lerobot_units, pose_units
 from .outcome import PlacementWatch, episode_failure, episode_info
 from .spaces import checked_action, goals, joint_space, observation_space, renderer
 from .target_spline import spline_ramp
+from .waypoint_control import waypoints
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
@@ -103,9 +104,15 @@ class BuildEnv(gymnasium.Env):
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
         self.lerobot_units = lerobot_units(robot, self.layout.names)
-        self.ee = end_effector(self.config, self.layout, self.control_steps)
+        make_hand = waypoints if action_mode == "waypoint" else end_effector
+        self.ee = make_hand(self.config, self.layout, self.control_steps)
+        # the action as lerobot records it: the joint command's units, or a hand's pose
+        self.action_units = self.lerobot_units
+        if action_mode in HAND_ACTION_MODES:
+            self.action_units = pose_units(self.ee.names, self.lerobot_units.robot_type)
         self.generator = arm_motion(self.config)
-        spaces = {"ee": self.ee.space, "relative": rel.relative_space(self.layout)}
+        spaces = {"relative": rel.relative_space(self.layout)}
+        spaces.update({mode: self.ee.space for mode in HAND_ACTION_MODES})
         self.action_space = spaces.get(action_mode, joint_space(self.layout))
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
@@ -158,13 +165,13 @@ class BuildEnv(gymnasium.Env):
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         require_live_episode(self._reset_needed, self.ended)
-        names = self.ee.names if self.action_mode == "ee" else self.layout.names
+        names = self.ee.names if self.action_mode in HAND_ACTION_MODES else self.layout.names
         target = checked_action(action, self._low, self._high, names)
         if self.action_mode == "relative":
             target = rel.absolute(target, self.measured_state(), self.layout)
         self.steps_taken += 1
         ramp = None
-        if self.action_mode != "ee" and not self.limit_commands:
+        if self.action_mode not in HAND_ACTION_MODES and not self.limit_commands:
             ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
         failure, newly = run_control_steps(self, target, ramp)
         loop = self._loop
@@ -209,7 +216,7 @@ class BuildEnv(gymnasium.Env):
     def held_command(self) -> np.ndarray:
         """The command that keeps both arms and hands as they are commanded now (in ee mode,
         the action that does)."""
-        if self.action_mode == "ee":
+        if self.action_mode in HAND_ACTION_MODES:
             return self.ee.hold(self._loop).astype(np.float32)
         loop = self._loop
         held = loop.data.ctrl[loop.handles.ctrl_index]
@@ -277,7 +284,7 @@ def command_at(
 ) -> np.ndarray:
     """The command for one control step, `share` through an environment step toward `target`:
     the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
-    if env.action_mode == "ee":  # the IK's joints, through the generator as a joint target
+    if env.action_mode in HAND_ACTION_MODES:  # the IK's joints, through the generator
         command = env.ee.command(env.loop, target)
         return env.generator.step(command) if env.limit_commands else command
     return env.generator.step(target) if ramp is None else ramp(share)

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..choices import HAND_ACTION_MODES
 from .env import BuildEnv
 from .spaces import environment_state
 
@@ -88,11 +89,13 @@ NOISE_PERIOD = 1.0  # s between draws of the noise's offset: a learner's errors 
 class JointNoise:
     """DART's noise (Laskey et al. 2017): an offset on the executed joint targets, each joint
     drawn from N(0, `scale`) every NOISE_PERIOD, from the episode's seed (the fingers are
-    left alone)."""
+    left alone); of waypoint actions, on each hand's x, y and z (`scale` in metres)."""
 
     def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
         self.scale = scale
         self.joints = env.layout.joints
+        if env.action_mode in HAND_ACTION_MODES:  # x, y, z of each hand's 5 entries
+            self.joints = np.array([k % 5 < 3 for k in range(len(env.action_units.names))])
         self.period = max(1, round(NOISE_PERIOD * env.fps))
         self.random = np.random.default_rng([seed, 0xDA27])
         self.offset = np.zeros(len(self.joints))

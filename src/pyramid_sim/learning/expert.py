@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..choices import HAND_ACTION_MODES
 from ..physics.tool_feedback import close_loop, take_over
 from .relative_actions import led, relative
 
@@ -56,7 +57,7 @@ class ExpertPolicy:
         if env.steps_taken != self._asked + 1:
             take_over(loop)  # somebody else drove the arms: on from where they are
         self._asked = env.steps_taken
-        if env.action_mode == "ee":
+        if env.action_mode in HAND_ACTION_MODES:
             return self._end_effector(loop)
         command = None
         for _ in range(env.control_steps):
@@ -86,6 +87,6 @@ class ExpertPolicy:
                 break
             moving = loop.expert_targets()
             self._done = not moving
-        if not moving:
+        if not moving and env.action_mode == "ee":  # a waypoint stays where the build ended
             return env.ee.hold(loop).astype(np.float32)
         return env.ee.expert(loop).astype(np.float32)

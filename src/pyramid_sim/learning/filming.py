@@ -13,7 +13,6 @@ from typing import Any
 from . import lerobot_format as fmt
 from .env import BuildEnv
 from .episode import Frame, expert_episode
-from .lerobot_units import LerobotUnits
 from .observation_names import environment_names
 from .record_config import RecordConfig
 from .staging import staging_folder
@@ -36,12 +35,13 @@ def make_env(config: RecordConfig) -> BuildEnv:
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     """The dataset's per-frame features, from the environment's layout."""
     names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
+    actions = env.action_units.names  # a hand's pose for the waypoint mode
     height, width = config.image_size
     environment = environment_names(env.layout.bricks, len(env.plan.bricks))
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
         "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),
-        "action": fmt.Feature("float32", (len(names),), names),
+        "action": fmt.Feature("float32", (len(actions),), actions),
     }
     for camera in config.cameras:
         found[f"observation.images.{camera}"] = fmt.Feature("video", (height, width, 3))
@@ -54,11 +54,11 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     return found
 
 
-def _frame_values(frame: Frame, cameras: tuple[str, ...], units: LerobotUnits) -> dict[str, Any]:
+def _frame_values(frame: Frame, cameras: tuple[str, ...], env: BuildEnv) -> dict[str, Any]:
     values: dict[str, Any] = {
-        "observation.state": units.to_lerobot(frame.state),
+        "observation.state": env.lerobot_units.to_lerobot(frame.state),
         "observation.environment_state": frame.environment,
-        "action": units.to_lerobot(frame.action),
+        "action": env.action_units.to_lerobot(frame.action),
         "next.reward": frame.reward,
         "next.done": frame.done,
         "next.success": frame.success,
@@ -119,7 +119,7 @@ def film_episode(
 
     def keep(frame: Frame) -> None:
         nonlocal frames
-        files.add(_frame_values(frame, config.cameras, env.lerobot_units))
+        files.add(_frame_values(frame, config.cameras, env))
         frames += 1
         if on_frame is not None:
             on_frame(files.episode, frames)

@@ -39,13 +39,11 @@ class LerobotView(gymnasium.Wrapper):
 
     def __init__(self, env: BuildEnv) -> None:
         super().__init__(env)
-        self.units = env.lerobot_units
-        self._joints = env.action_mode != "ee"  # ee commands are poses: no motor's units
-        if self._joints:
-            inner_action = env.action_space
-            assert isinstance(inner_action, spaces.Box)
-            ends = self.units.to_lerobot(np.stack([inner_action.low, inner_action.high]))
-            self.action_space = spaces.Box(ends.min(0), ends.max(0), dtype=np.float32)
+        self.units, self.action_units = env.lerobot_units, env.action_units
+        inner_action = env.action_space
+        assert isinstance(inner_action, spaces.Box)
+        ends = self.action_units.to_lerobot(np.stack([inner_action.low, inner_action.high]))
+        self.action_space = spaces.Box(ends.min(0), ends.max(0), dtype=np.float32)
         inner = env.observation_space
         assert isinstance(inner, spaces.Dict)
         bricks, targets = inner["bricks"].shape, inner["goals"].shape
@@ -74,7 +72,7 @@ class LerobotView(gymnasium.Wrapper):
         return lerobot_keys(observation, self.units), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
-        ours = self.units.from_lerobot(action) if self._joints else action
+        ours = self.action_units.from_lerobot(action)
         observation, reward, terminated, truncated, info = self.env.step(
             np.asarray(ours, dtype=np.float32)
         )

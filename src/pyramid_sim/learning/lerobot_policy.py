@@ -44,6 +44,7 @@ class LerobotPolicy:
         self._to_tensors = preprocess_observation
         self.task = task_text(env.unwrapped)
         self.units = env.unwrapped.lerobot_units
+        self.action_units = env.unwrapped.action_units
 
     def reset(self) -> None:
         self.policy.reset()  # an action chunk is not carried into the next episode
@@ -60,7 +61,7 @@ class LerobotPolicy:
         with torch.inference_mode():
             action = self.post(self.policy.select_action(self.pre(tensors)))
         theirs = action.to("cpu").numpy()[0]  # in lerobot's units for the robot, as recorded
-        return np.asarray(self.units.from_lerobot(theirs), dtype=np.float32)
+        return np.asarray(self.action_units.from_lerobot(theirs), dtype=np.float32)
 
 
 def lerobot_missing() -> MachineError:

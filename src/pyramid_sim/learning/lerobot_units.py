@@ -32,6 +32,13 @@ class LerobotUnits:
         return np.asarray(np.asarray(theirs, np.float64) / self.scale + self.offset)
 
 
+def pose_units(names: tuple[str, ...], robot_type: str) -> LerobotUnits:
+    """Hand poses and gaps (the `ee` and `waypoint` actions): no motor's units, kept in
+    pyramid_sim's own (metres, radians)."""
+    n = len(names)
+    return LerobotUnits(names, robot_type, np.ones(n), np.zeros(n))
+
+
 def lerobot_units(robot: RobotDescription, names: tuple[str, ...]) -> LerobotUnits:
     """The units of `robot`'s state and command, whose entries are `names` (each arm's joints,
     then its gripper, left arm first, as the environment's layout has them)."""
