@@ -86,6 +86,19 @@ def test_a_long_turn_does_not_slow_the_way(transit):
     )  # never longer than turning and moving in step
 
 
+def test_a_path_heads_for_each_corner_in_turn():
+    """Up, over and down: while each segment runs the path heads for its end, then the next's;
+    past the end, for the end (a waypoint action's label)."""
+    start, end = Pose(0.5, 0.3, 0.2, 0.0), Pose(0.6, -0.1, 0.3, 0.5)
+    path = plan_path(start, end, speed=0.6, turn_rate=1.5, transit=True)
+    up, over = path.segments
+    assert path.heading(0.0).position == pytest.approx([0.5, 0.3, 0.3])
+    assert path.heading(up.duration * 0.99).position == pytest.approx(up.end.position)
+    assert path.heading(up.duration + 1e-6).position == pytest.approx(end.position)
+    assert path.heading(path.duration + 1.0).position == pytest.approx(end.position)
+    assert over.end.position == pytest.approx(end.position)
+
+
 def test_a_turn_begun_on_a_move_never_makes_it_longer():
     start, end = Pose(0.5, 0.0, 0.2, 0.0), Pose(0.5, 0.0, 0.3, 0.0)
     plain = plan_segment(start, end, speed=0.25, turn_rate=1.5).duration

@@ -41,7 +41,7 @@ from .expert import ExpertPolicy
 from .footprints import draw_goals
 from .lerobot_units import lerobot_units, pose_units
 from .outcome import PlacementWatch, episode_failure, episode_info
-from .spaces import checked_action, goals, joint_space, observation_space, renderer
+from .spaces import checked_action, goals, joint_space, observation_space, pick, renderer
 from .target_spline import spline_ramp
 from .waypoint_control import waypoints
 
@@ -233,6 +233,7 @@ class BuildEnv(gymnasium.Env):
         observed: dict[str, Any] = {
             "state": self.measured_state(),
             "bricks": loop.data.qpos[self._brick_q],
+            "pick": pick(self.plan),
             "goals": self.goals.copy(),
             "tools": lay.tools(loop.data, loop.handles),
         }

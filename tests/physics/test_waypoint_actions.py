@@ -1,0 +1,133 @@
+"""action_mode="waypoint": each hand's pose to go to, the arm moved there by the ee mode's IK
+through the motion generator, no faster than the hand's speeds."""
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import pyramid_sim
+from pyramid_sim.learning import waypoint_control
+from pyramid_sim.learning.episode import JointNoise
+
+ENV = pyramid_sim.ENV_ID
+
+
+def _env(**options):
+    return gymnasium.make(
+        ENV, structure="pyramid-even", layers=1, variation="layout", action_mode="waypoint",
+        **options,
+    ).unwrapped  # fmt: skip
+
+
+def test_the_experts_waypoints_build_and_the_checker_passes():
+    env = _env()
+    assert env.action_space.shape == (10,)
+    assert env.action_units.names[:5] == ("left/x", "left/y", "left/z", "left/yaw", "left/gripper")
+    check_env(env, skip_render_check=True)
+    env.reset(seed=3)
+    rewards = 0.0
+    while True:
+        _, reward, terminated, truncated, info = env.step(env.expert_action())
+        rewards += reward
+        if terminated or truncated:
+            break
+    assert terminated and info["is_success"] and rewards == 2, info["failure"]
+    env.close()
+
+
+def test_a_waypoint_is_where_the_move_ends_not_the_next_step_of_it():
+    """Through a move the expert's action stays at the move's end (aimed as its loop aims)
+    while the hand travels; a relative or ee label would change every step."""
+    env = _env()
+    env.reset(seed=0)
+    runner = env.loop.dispatch.runners["left"]
+    labels, tools = [], []
+    for _ in range(400):
+        action = env.expert_action()
+        step = runner.current
+        if step is not None and step.name == "approach" and runner.started:
+            labels.append(action[:3].copy())
+            tools.append(env.loop.data.site_xpos[env.loop.handles.tcp_site["left"]].copy())
+            aimed = env.loop.feedback.aim("left", step.pose)
+            np.testing.assert_allclose(action[:3], aimed.position, atol=1e-6)
+        env.step(action)
+    assert len(labels) >= 3
+    assert np.ptp(np.array(labels), axis=0).max() < 1e-3  # the label holds (the aim may creep)
+    assert np.linalg.norm(tools[-1] - tools[0]) > 0.01  # while the hand moves on
+    env.close()
+
+
+def test_a_far_waypoint_moves_the_target_no_faster_than_the_hand_moves():
+    """A waypoint 30 cm off: each control step the tool's target moves at most the hand's
+    free speed times the control step; the arm follows within its limits."""
+    env = _env()
+    env.reset(seed=0)
+    hand = env.ee
+    start = hand.ee.targets["left"]
+    action = hand.hold(env.loop).astype(np.float32)
+    action[1] -= 0.3  # left hand 30 cm towards the middle
+    way = []
+    for _ in range(10):
+        before = hand.ee.targets["left"]
+        env.step(action)
+        after = hand.ee.targets["left"]
+        way.append(np.linalg.norm(after.position - before.position))
+    most = hand.speed * hand.dt * env.control_steps
+    assert max(way) <= most + 1e-9
+    assert max(way) > 0.9 * most  # and does move at that speed, far from the end
+    assert hand.ee.targets["left"].y < start.y - 0.1
+    env.loop.monitor.flush()
+    assert env.loop.monitor.speed_ratio < 1.0 and env.loop.monitor.torque_ratio < 1.0
+    env.close()
+
+
+def test_a_jittering_waypoint_is_smoothed_and_still_builds():
+    """2 mm of white noise on each hand's waypoint every step, as a learner's errors: the lag
+    at a move's end and the generator keep the brick in the fingers."""
+    env = _env()
+    env.reset(seed=0)
+    noise = np.random.default_rng(0)
+    while True:
+        action = env.expert_action()
+        for arm in (0, 5):
+            action[arm : arm + 3] += noise.normal(0.0, 0.002, 3)
+        _, _, terminated, truncated, info = env.step(action.astype(np.float32))
+        if terminated or truncated:
+            break
+    assert info["is_success"], info["failure"]
+    env.close()
+
+
+def test_without_the_lag_a_waypoint_is_met_at_full_speed(monkeypatch):
+    """The lag is what slows a move at its end: with it gone the last step before the
+    waypoint is a full slow-speed step, with it a fraction of one."""
+    env = _env()
+    env.reset(seed=0)
+
+    def last_step() -> float:
+        action = env.ee.hold(env.loop).astype(np.float32)
+        action[2] += 0.01  # 1 cm up
+        before = env.ee.ee.targets["left"].z
+        env.ee.command(env.loop, action)
+        return env.ee.ee.targets["left"].z - before
+
+    lagged = last_step()
+    monkeypatch.setattr(waypoint_control, "LAG", 1e-9)
+    env.reset(seed=0)
+    unlagged = last_step()
+    assert unlagged == pytest.approx(env.ee.slow_speed * env.ee.dt)
+    assert lagged == pytest.approx(0.01 / waypoint_control.LAG * env.ee.dt)
+    assert lagged < unlagged
+    env.close()
+
+
+def test_darts_noise_on_waypoints_moves_the_hands_positions_only():
+    env = _env()
+    env.reset(seed=0)
+    noise = JointNoise(env, 0, 0.01)
+    action = env.expert_action()
+    moved = noise(action) - action
+    assert np.all(moved[[0, 1, 2, 5, 6, 7]] != 0)  # x, y, z of each hand
+    assert np.all(moved[[3, 4, 8, 9]] == 0)  # not the yaw, not the fingers
+    env.close()
