@@ -16,7 +16,13 @@ from lerobot.envs.configs import EnvConfig
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 import pyramid_sim
-from pyramid_sim.choices import DEFAULT_VARIATION, RECORD_CAMERAS, RECORD_FPS, RECORD_IMAGE_SIZE
+from pyramid_sim.choices import (
+    ARMS,
+    DEFAULT_VARIATION,
+    RECORD_CAMERAS,
+    RECORD_FPS,
+    RECORD_IMAGE_SIZE,
+)
 from pyramid_sim.robots import robot
 
 SPARE_BRICKS = pyramid_sim.SimConfig().spare_bricks  # in the magazine beside the structure's
@@ -39,7 +45,7 @@ class PyramidSimEnv(EnvConfig):
     cameras: tuple[str, ...] = RECORD_CAMERAS  # as `record --cameras`
     observation_height: int = RECORD_IMAGE_SIZE[0]
     observation_width: int = RECORD_IMAGE_SIZE[1]
-    action_mode: str = "joint"  # as `record --action-mode`: joint or relative
+    action_mode: str = "joint"  # as `record --action-mode`: joint, relative or waypoint
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 
@@ -47,8 +53,10 @@ class PyramidSimEnv(EnvConfig):
         bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
         # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
         motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
+        # a waypoint is each hand's x, y, z, yaw and gap
+        actions = 5 * len(ARMS) if self.action_mode == "waypoint" else motors
         self.features = {
-            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(motors,)),
+            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(actions,)),
             "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),
             "environment_state": PolicyFeature(
                 type=FeatureType.ENV,
