@@ -2,7 +2,7 @@
 """How forgiving the command path is: the expert perturbed the way a learned policy errs.
 
     python benchmarks/perturbations.py [--seeds N] [--structure S --layers N] [--json PATH]
-                                       [--raw]
+                                       [--raw] [--action-mode joint|waypoint]
 
 Each row is the expert's episodes on held-out seeds (from 100000) at the `layout` level,
 with its actions perturbed before the environment steps them (learning/perturbations.py):
@@ -26,9 +26,10 @@ ROWS = [("none", 0.0), ("noise", 0.002), ("noise", 0.005), ("hold", 5), ("hold",
 
 
 def run_row(env, perturbation, seeds: range, limit: int) -> dict:
+    from pyramid_sim.learning.action_modes import moved_entries
     from pyramid_sim.learning.perturbations import Perturber
 
-    joints = env.layout.joints
+    joints = moved_entries(env)
     wins, failures, start = 0, {}, time.perf_counter()
     for seed in seeds:
         env.reset(seed=seed)
@@ -52,6 +53,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--structure", default="pyramid-even")
     parser.add_argument("--layers", type=whole("layers"), default=1)
     parser.add_argument("--raw", action="store_true", help="no motion generator")
+    parser.add_argument("--action-mode", choices=("joint", "waypoint"), default="joint",
+                        help="the expert's actions: joint targets (noise in rad) or each "
+                        "hand's waypoint (noise in m)")  # fmt: skip
     parser.add_argument("--json", type=output_path("json path", folder=False), metavar="PATH")
     args = parser.parse_args(argv)
     if not 1 <= args.seeds <= 1000:
@@ -63,7 +67,7 @@ def main(argv: list[str] | None = None) -> int:
         from pyramid_sim.learning.perturbations import Perturbation
 
         env = BuildEnv(args.structure, layers=args.layers, variation="layout",
-                       limit_commands=not args.raw)  # fmt: skip
+                       limit_commands=not args.raw, action_mode=args.action_mode)  # fmt: skip
     except PyramidSimError as error:
         print(f"perturbations: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -72,7 +76,8 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     print(f"{'perturbation':<20} {'built':>7}  failures")
     for kind, amount in ROWS:
-        row = run_row(env, Perturbation(kind, amount), seeds, limit)
+        metres = args.action_mode == "waypoint"
+        row = run_row(env, Perturbation(kind, amount, metres), seeds, limit)
         rows.append(row)
         print(f"{row['perturbation']:<20} {row['successes']:>3}/{row['episodes']:<3}  "
               f"{row['failures'] or '-'}", flush=True)  # fmt: skip
@@ -82,7 +87,8 @@ def main(argv: list[str] | None = None) -> int:
 
         doc = {"inputs": {"structure": args.structure, "layers": args.layers,
                           "seeds": [seeds[0], seeds[-1]], "variation": "layout",
-                          "motion_generator": not args.raw, "step_limit": limit},
+                          "motion_generator": not args.raw, "step_limit": limit,
+                          "action_mode": args.action_mode},
                "versions": {"pyramid_sim": pyramid_sim.__version__, "mujoco": mujoco.__version__},
                "rows": rows}  # fmt: skip
         write_json_atomic(args.json, doc)

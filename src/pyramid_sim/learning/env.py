@@ -34,16 +34,15 @@ from . import layout as lay
 from . import randomize as rnd
 from . import relative_actions as rel
 from . import variation as var
+from .action_modes import action_parts
 from .contract import check_modes, check_reset_options, require_live_episode
-from .ee_control import end_effector
 from .episodes import EpisodeMaker
 from .expert import ExpertPolicy
 from .footprints import draw_goals
-from .lerobot_units import lerobot_units, pose_units
+from .lerobot_units import lerobot_units
 from .outcome import PlacementWatch, episode_failure, episode_info
-from .spaces import checked_action, goals, joint_space, observation_space, pick, renderer
+from .spaces import checked_action, goals, observation_space, pick, renderer
 from .target_spline import spline_ramp
-from .waypoint_control import waypoints
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
@@ -104,16 +103,10 @@ class BuildEnv(gymnasium.Env):
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
         self.lerobot_units = lerobot_units(robot, self.layout.names)
-        make_hand = waypoints if action_mode == "waypoint" else end_effector
-        self.ee = make_hand(self.config, self.layout, self.control_steps)
-        # the action as lerobot records it: the joint command's units, or a hand's pose
-        self.action_units = self.lerobot_units
-        if action_mode in HAND_ACTION_MODES:
-            self.action_units = pose_units(self.ee.names, self.lerobot_units.robot_type)
+        self.ee, self.action_units, self.action_space = action_parts(
+            action_mode, self.config, self.layout, self.control_steps, self.lerobot_units
+        )
         self.generator = arm_motion(self.config)
-        spaces = {"relative": rel.relative_space(self.layout)}
-        spaces.update({mode: self.ee.space for mode in HAND_ACTION_MODES})
-        self.action_space = spaces.get(action_mode, joint_space(self.layout))
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
         self.observation_space = observation_space(

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..choices import HAND_ACTION_MODES
+from .action_modes import moved_entries
 from .env import BuildEnv
 from .spaces import environment_state
 
@@ -93,9 +93,7 @@ class JointNoise:
 
     def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
         self.scale = scale
-        self.joints = env.layout.joints
-        if env.action_mode in HAND_ACTION_MODES:  # x, y, z of each hand's 5 entries
-            self.joints = np.array([k % 5 < 3 for k in range(len(env.action_units.names))])
+        self.joints = moved_entries(env)
         self.period = max(1, round(NOISE_PERIOD * env.fps))
         self.random = np.random.default_rng([seed, 0xDA27])
         self.offset = np.zeros(len(self.joints))

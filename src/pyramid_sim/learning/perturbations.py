@@ -19,10 +19,12 @@ OFFSET_PERIOD = 25  # steps between an offset's draws: a second at 25 fps
 @dataclass(frozen=True)
 class Perturbation:
     """`kind` of KINDS; `amount` in rad for noise and offset (each joint's standard
-    deviation), in steps for hold and delay."""
+    deviation; in m with `metres`, each hand position's, for waypoint actions), in steps for
+    hold and delay."""
 
     kind: str
     amount: float
+    metres: bool = False
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -40,8 +42,9 @@ class Perturbation:
     def text(self) -> str:
         if self.kind == "none":
             return "none"
-        unit = " mrad" if self.kind in ("noise", "offset") else " steps"
-        value = self.amount * 1000 if unit == " mrad" else self.amount
+        small = " mm" if self.metres else " mrad"
+        unit = small if self.kind in ("noise", "offset") else " steps"
+        value = self.amount * 1000 if unit == small else self.amount
         return f"{self.kind} {value:g}{unit}"
 
 
