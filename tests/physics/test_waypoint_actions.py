@@ -1,8 +1,11 @@
 """action_mode="waypoint": each hand's pose to go to, the arm moved there by the ee mode's IK
 through the motion generator, no faster than the hand's speeds."""
 
+import json
+
 import gymnasium
 import numpy as np
+import pyarrow.parquet as pq
 import pytest
 from gymnasium.utils.env_checker import check_env
 
@@ -130,4 +133,25 @@ def test_darts_noise_on_waypoints_moves_the_hands_positions_only():
     moved = noise(action) - action
     assert np.all(moved[[0, 1, 2, 5, 6, 7]] != 0)  # x, y, z of each hand
     assert np.all(moved[[3, 4, 8, 9]] == 0)  # not the yaw, not the fingers
+    env.close()
+
+
+def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_path):
+    root = tmp_path / "d"
+    recorded = pyramid_sim.record(
+        root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="waypoint",
+        variation="layout",
+    )  # fmt: skip
+    assert recorded.failed == ()
+    info = json.loads((root / "meta/info.json").read_text())
+    assert info["features"]["action"]["names"][5:8] == ["right/x", "right/y", "right/z"]
+    frames = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
+    actions = np.array(frames["action"])
+    env = _env()
+    env.reset(seed=0)
+    for action in actions:
+        _, _, terminated, truncated, info = env.step(np.array(action, dtype=np.float32))
+        if terminated or truncated:
+            break
+    assert terminated and info["is_success"]
     env.close()

@@ -47,7 +47,8 @@ class RecordConfig:
         if self.action_mode not in RECORD_ACTION_MODES:
             raise ConfigError(
                 f"action mode: {self.action_mode!r} is not recorded; accepted "
-                + " or ".join(RECORD_ACTION_MODES)
+                + ", ".join(RECORD_ACTION_MODES[:-1])
+                + f" or {RECORD_ACTION_MODES[-1]}"
             )
         if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
             raise ConfigError(
