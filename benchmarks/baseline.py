@@ -5,6 +5,7 @@ evaluate` on held-out seeds.
 
     python benchmarks/baseline.py --out DIR [--quick] [--robot R] [--structure S --layers N]
                                   [--cameras A,B] [--steps N] [--curve N]
+                                  [--action-mode M] [--noise X]
 
 Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
 (docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run),
@@ -84,7 +85,14 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     parser.add_argument("--cameras", default="", help="cameras the policy sees (default none)")
     parser.add_argument("--steps", type=whole("steps"), default=None, help="training steps")
     parser.add_argument("--demos", type=whole("demos"), default=None)
-    parser.add_argument("--noise", type=number("noise"), default=None, help="DART, rad")
+    parser.add_argument("--noise", type=number("noise"), default=None,
+                        help="DART: rad of joint actions, m of waypoints")  # fmt: skip
+    parser.add_argument(
+        "--action-mode",
+        choices=("joint", "relative", "waypoint"),
+        default=None,
+        help="the action's form (default the recipe's)",
+    )
     parser.add_argument("--episodes", type=whole("episodes"), default=None, help="evaluated")
     parser.add_argument("--workers", type=whole("workers"), default=1, help="recording them")
     parser.add_argument(
@@ -97,7 +105,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     if args.quick:
         recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
     given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
-             "episodes": args.episodes}  # fmt: skip
+             "episodes": args.episodes, "action_mode": args.action_mode}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:
