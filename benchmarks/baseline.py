@@ -46,8 +46,10 @@ class Recipe:
     cameras: tuple[str, ...] = ()
     image_size: int = 224  # record's default: a default recording's checkpoint evaluates as is
     demos: int = 100
-    noise: float = 0.003  # rad: DART's offsets on the executed joints
-    action_mode: str = "relative"  # each joint's change: 2.4x less error than absolute targets
+    noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
+    # where each hand goes: every action carries the brick's and its target's place (a
+    # relative joint action carried a few mrad of it; docs/learning.md, "Waypoint actions")
+    action_mode: str = "waypoint"
     steps: int = 8000  # about 45 minutes on an idle core at 3 steps a second
     learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
     batch_size: int = 32
