@@ -3,7 +3,7 @@
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
 targets and finger gaps (`layout.Layout`), ramped across the control and physics steps it
 spans (`action_mode="relative"`: each joint's change from where it is; `"ee"`: each arm's
-tool-pose change). The environment feeds bricks to the spawn spot, and judges placements and
+tool-pose change; `"waypoint"`: the tool pose each arm goes to). The environment feeds bricks to the spawn spot, and judges placements and
 failures from what happens, whoever drives it;
 `ExpertPolicy` (`expert_action()`) is the scripted builder (scheduler, primitives, mink IK)
 as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
@@ -207,8 +207,8 @@ class BuildEnv(gymnasium.Env):
 
     # --- what a step reads and writes --------------------------------------------------------
     def held_command(self) -> np.ndarray:
-        """The command that keeps both arms and hands as they are commanded now (in ee mode,
-        the action that does)."""
+        """The command that keeps both arms and hands as they are commanded now (in the hand
+        modes, the action that does)."""
         if self.action_mode in HAND_ACTION_MODES:
             return self.ee.hold(self._loop).astype(np.float32)
         loop = self._loop
