@@ -55,3 +55,15 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
     assert not [a for a in commands[1] if "normalization_mapping" in a]
     assert "--policy.use_vae=false" in commands[0] and "--policy.optimizer_lr=0.0003" in commands[0]
     assert float((tmp_path / "train_cpu_s.txt").read_text()) >= 0
+
+
+def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, capsys):
+    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    assert (recipe.action_mode, recipe.noise) == ("waypoint", 0.005)  # metres on each hand
+    given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
+    _, recipe = baseline.parse(given)
+    assert (recipe.action_mode, recipe.noise) == ("relative", 0.003)
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "c"), "--action-mode", "ee"])
+    assert stopped.value.code == 2 and "invalid choice: 'ee'" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # nothing written for any of them

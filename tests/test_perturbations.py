@@ -37,6 +37,13 @@ def test_noise_and_offsets_touch_the_joints_only_and_are_drawn_from_the_seed():
     assert 0 < np.abs(moved[0][:2]).max() < 0.03
 
 
+def test_a_rows_name_gives_its_amount_in_the_actions_own_unit():
+    """Joint actions' noise in mrad; a waypoint's in mm (the same numbers, metres)."""
+    assert Perturbation("noise", 0.002).text == "noise 2 mrad"
+    assert Perturbation("offset", 0.005, metres=True).text == "offset 5 mm"
+    assert Perturbation("hold", 5, metres=True).text == "hold 5 steps"
+
+
 @pytest.mark.parametrize(
     "kind, amount, says",
     [("shake", 1, "unknown 'shake'"), ("hold", 0, "accepted 1 or more"),
