@@ -13,7 +13,7 @@ from ..choices import HAND_ACTION_MODES
 from ..config import SimConfig
 from .ee_control import EndEffectorControl, end_effector
 from .layout import Layout
-from .lerobot_units import LerobotUnits, pose_units
+from .lerobot_units import LerobotUnits, own_units
 from .relative_actions import relative_space
 from .spaces import joint_space
 from .waypoint_control import WaypointControl, waypoints
@@ -33,7 +33,7 @@ def action_parts(
     else:
         control = end_effector(config, layout, steps)
     if action_mode in HAND_ACTION_MODES:
-        return control, pose_units(control.names, units.robot_type), control.space
+        return control, own_units(control.names, units.robot_type), control.space
     space = relative_space(layout) if action_mode == "relative" else joint_space(layout)
     return control, units, space
 

@@ -83,9 +83,13 @@ class EndEffectorControl:
         """The joint command for one control step of `action` (a share of the environment
         step's move): the IK aimed at the moved targets, kept on their leash, and stepped once
         (mink.NoSolutionFound if it has no motion within the limits)."""
-        share = 1.0 / self.steps
+        return self.move(loop, action * np.tile([1.0 / self.steps] * 4 + [1.0], len(c.ARMS)))
+
+    def move(self, loop: BuildLoop, moves: np.ndarray) -> np.ndarray:
+        """The joint command for one control step that moves each arm's target by its
+        (dx, dy, dz, dyaw) in `moves` and sets its gap, as `command` does."""
         for k, arm in enumerate(c.ARMS):
-            dx, dy, dz, dyaw, _ = action[5 * k : 5 * k + 5] * share
+            dx, dy, dz, dyaw, _ = moves[5 * k : 5 * k + 5]
             t, tool = self.targets[arm], loop.ik.tcp_pose(arm)
             yaw = tool.yaw + float(np.clip(_wrap(t.yaw + dyaw - tool.yaw), -TURN_LEASH, TURN_LEASH))
             aim = np.clip(
@@ -99,7 +103,7 @@ class EndEffectorControl:
             loop.ik.set_target(arm, self.targets[arm])
         loop.ik.step()
         command = loop.command().copy()
-        command[self.gaps] = action[[4, 9]]
+        command[self.gaps] = moves[[4, 9]]
         return command
 
     def expert(self, loop: BuildLoop) -> np.ndarray:

@@ -32,9 +32,9 @@ class LerobotUnits:
         return np.asarray(np.asarray(theirs, np.float64) / self.scale + self.offset)
 
 
-def pose_units(names: tuple[str, ...], robot_type: str) -> LerobotUnits:
-    """Hand poses and gaps (the `ee` and `waypoint` actions): no motor's units, kept in
-    pyramid_sim's own (metres, radians)."""
+def own_units(names: tuple[str, ...], robot_type: str) -> LerobotUnits:
+    """Entries kept in pyramid_sim's own units (metres, radians): a robot without lerobot's
+    names, and hand poses and gaps (the `ee` and `waypoint` actions), no motor's."""
     n = len(names)
     return LerobotUnits(names, robot_type, np.ones(n), np.zeros(n))
 
@@ -44,8 +44,7 @@ def lerobot_units(robot: RobotDescription, names: tuple[str, ...]) -> LerobotUni
     then its gripper, left arm first, as the environment's layout has them)."""
     n = len(names)
     if not robot.lerobot_motors:
-        ones, zeros = np.ones(n), np.zeros(n)
-        return LerobotUnits(names, f"{robot.name}_bimanual", ones, zeros)
+        return own_units(names, f"{robot.name}_bimanual")
     per_arm = len(robot.lerobot_motors)
     assert n == per_arm * len(ARMS), (names, robot.lerobot_motors)
     (gain,) = robot.finger_gains  # one jaw: its gap is gain x its joint angle

@@ -72,8 +72,7 @@ class WaypointControl:
             turn = math.remainder(yaw - t.yaw, 2 * math.pi)
             turn = max(-self.turn_rate * self.dt, min(self.turn_rate * self.dt, turn))
             moves[5 * k : 5 * k + 5] = [*way, turn, gap]
-        steps = self.ee.steps  # the ee mode's command moves its targets a share of an action
-        return self.ee.command(loop, moves * np.array([steps] * 4 + [1] + [steps] * 4 + [1]))
+        return self.ee.move(loop, moves)
 
     def expert(self, loop: BuildLoop) -> np.ndarray:
         """Where the scripted builder's current move ends for each arm (of a move up, over and
