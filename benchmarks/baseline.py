@@ -50,6 +50,7 @@ class Recipe:
     # where each hand goes: every action carries the brick's and its target's place (a
     # relative joint action carried a few mrad of it; docs/learning.md, "Waypoint actions")
     action_mode: str = "waypoint"
+    fps: int = 25  # the recording's rate, the policy's and the evaluation's
     steps: int = 8000  # about 45 minutes on an idle core at 3 steps a second
     learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
     batch_size: int = 32
@@ -95,6 +96,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
         default=None,
         help="the action's form (default the recipe's)",
     )
+    parser.add_argument("--fps", type=whole("fps"), default=None, help="steps a second")
     parser.add_argument("--episodes", type=whole("episodes"), default=None, help="evaluated")
     parser.add_argument("--workers", type=whole("workers"), default=1, help="recording them")
     parser.add_argument(
@@ -107,7 +109,8 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     if args.quick:
         recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
     given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
-             "episodes": args.episodes, "action_mode": args.action_mode}  # fmt: skip
+             "episodes": args.episodes, "action_mode": args.action_mode,
+             "fps": args.fps}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:
@@ -124,6 +127,7 @@ def record(out: Path, recipe: Recipe) -> float:
         episodes=recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=(recipe.image_size, recipe.image_size), variation=recipe.variation,
         noise=recipe.noise, workers=recipe.workers, action_mode=recipe.action_mode,
+        fps=recipe.fps,
     )  # fmt: skip
     return time.perf_counter() - start
 
@@ -199,7 +203,7 @@ def score(checkpoint: Path, recipe: Recipe, episodes: int, out: Path | None) -> 
     evaluation = pyramid_sim.evaluate(
         str(checkpoint), recipe.structure, out=out, robot=recipe.robot, layers=recipe.layers,
         variation=recipe.variation, episodes=episodes, max_steps=recipe.max_steps,
-        action_mode=recipe.action_mode,
+        action_mode=recipe.action_mode, fps=recipe.fps,
     )  # fmt: skip
     return evaluation.scores
 

@@ -60,10 +60,31 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
 def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, capsys):
     _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
     assert (recipe.action_mode, recipe.noise) == ("waypoint", 0.005)  # metres on each hand
+    assert recipe.fps == baseline.Recipe.fps
     given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
-    _, recipe = baseline.parse(given)
-    assert (recipe.action_mode, recipe.noise) == ("relative", 0.003)
+    _, recipe = baseline.parse([*given, "--fps", "10"])
+    assert (recipe.action_mode, recipe.noise, recipe.fps) == ("relative", 0.003, 10)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--action-mode", "ee"])
     assert stopped.value.code == 2 and "invalid choice: 'ee'" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())  # nothing written for any of them
+
+
+def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, monkeypatch):
+    import pyramid_sim
+
+    calls: dict[str, dict] = {}
+
+    def recorded(out, name, **kwargs):
+        calls["record"] = kwargs
+
+    def evaluated(policy, name, **kwargs):
+        calls["evaluate"] = kwargs
+        return type("Evaluation", (), {"scores": {"success_rate": 0.0}})()
+
+    monkeypatch.setattr(pyramid_sim, "record", recorded)
+    monkeypatch.setattr(pyramid_sim, "evaluate", evaluated)
+    recipe = baseline.Recipe(fps=10)
+    baseline.record(tmp_path, recipe)
+    baseline.score(tmp_path / "checkpoint", recipe, 2, None)
+    assert calls["record"]["fps"] == 10 and calls["evaluate"]["fps"] == 10
