@@ -274,7 +274,7 @@ def evaluate(
     on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
-    `action_mode` (joint, relative or ee: as it was trained). `options` as for `build`.
+    `action_mode` (one of `choices.ACTION_MODES`: as it was trained). `options` as for `build`.
     Returns the `Evaluation` (its scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluate import EvaluateConfig

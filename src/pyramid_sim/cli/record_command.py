@@ -40,7 +40,8 @@ def image_size(text: str) -> tuple[int, int]:
 
 
 def noise(text: str) -> float:
-    """DART's noise in rad, refused here when out of range (before anything is imported)."""
+    """DART's noise (rad, or m in the hand modes), refused here when out of range (before
+    anything is imported)."""
     value = number("noise")(text)
     if not NOISE.low <= value <= NOISE.high:
         raise argparse.ArgumentTypeError(f"noise: {text!r} is out of range; accepted {NOISE.text}")
@@ -88,10 +89,10 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "--noise",
         type=noise,
         default=0.0,
-        metavar="RAD",
-        help="DART: each joint's executed target off the expert's by an offset drawn every "
-        f"second from N(0, RAD), the expert's correction kept as the label; {NOISE.text} "
-        "(default 0)",
+        metavar="SCALE",
+        help="DART: each joint's executed target (rad), or in the waypoint mode "
+        "each hand's x, y and z (m), off the expert's by an offset drawn every second from "
+        f"N(0, SCALE), the expert's correction kept as the label; {NOISE.text} (default 0)",
     )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))

@@ -36,7 +36,9 @@ def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
         raise ConfigError(
-            f"action mode: unknown {action_mode!r}; accepted joint, relative, ee or waypoint"
+            f"action mode: unknown {action_mode!r}; accepted "
+            + ", ".join(ACTION_MODES[:-1])
+            + f" or {ACTION_MODES[-1]}"
         )
     if render_mode not in (None, "rgb_array"):
         raise ConfigError(f"render mode: unknown {render_mode!r}; accepted rgb_array")

@@ -52,7 +52,7 @@ class EvaluateConfig:
     first_seed: int = EVAL_SEED
     videos: int = 0  # the first episodes filmed from the overview camera
     max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
-    action_mode: str = "joint"  # the policy's: joint, relative or ee
+    action_mode: str = "joint"  # the policy's: one of choices.ACTION_MODES
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
