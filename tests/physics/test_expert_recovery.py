@@ -117,22 +117,6 @@ def test_the_hands_tool_poses_are_observed_where_the_tool_sites_are():
     env.close()
 
 
-def test_the_time_elapsed_is_observed_and_starts_again_at_each_reset():
-    """The phase of the build: a wait at a pose ends on the other arm's progress, which a
-    policy reads from the clock as the expert's schedule keeps it."""
-    env = gymnasium.make(ENV, **TASK).unwrapped
-    obs, _ = env.reset(seed=1)
-    assert obs["elapsed"].tolist() == [0.0]
-    for _ in range(30):
-        obs, *_ = env.step(env.expert_action())
-    names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
-    assert environment_state(obs)[names.index("elapsed")] == np.float32(30 / env.fps)
-    assert env.observation_space.contains(obs)
-    obs, _ = env.reset(seed=2)
-    assert obs["elapsed"].tolist() == [0.0]
-    env.close()
-
-
 def test_the_footprint_is_drawn_for_the_cameras_and_the_physics_is_the_same_bit_for_bit():
     runs = {}
     for footprints in (True, False):

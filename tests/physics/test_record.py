@@ -52,11 +52,11 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     assert info["features"]["observation.state"]["shape"] == [16]
     # A state-only policy learns from where the bricks are; lerobot's sims carry next.success.
     environment = info["features"]["observation.environment_state"]
-    assert environment["shape"] == [4 * 7 + 4 + 1 + 4 + 8] and environment["names"][:2] == [
+    assert environment["shape"] == [4 * 7 + 4 + 4 + 8] and environment["names"][:2] == [
         "brick0.x",
         "brick0.y",
     ]
-    assert environment["names"][28:33] == ["pick.x", "pick.y", "pick.z", "pick.yaw", "elapsed"]
+    assert environment["names"][28:32] == ["pick.x", "pick.y", "pick.z", "pick.yaw"]
     assert environment["names"][-12:-8] == ["goal0.x", "goal0.y", "goal0.z", "goal0.yaw"]
     assert environment["names"][-8:-4] == [
         "left_tool.x",
@@ -71,8 +71,6 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     assert abs(first[0, 2] - 0.11) < 1e-3  # the first brick lies on the spot, 11 cm up
     pick = np.array(data["observation.environment_state"][0])[28:31]
     np.testing.assert_allclose(pick, first[0, :3], atol=1e-3)  # where the pick location is
-    elapsed = [row[32] for row in data["observation.environment_state"]]
-    np.testing.assert_allclose(elapsed, data["timestamp"], atol=1e-5)  # the frame's own time
     tasks = pq.read_table(root / "meta/tasks.parquet").to_pylist()
     assert tasks == [{"task_index": 0, "task": tasks[0]["task"]}] and "pyramid" in tasks[0]["task"]
 

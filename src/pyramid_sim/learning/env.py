@@ -113,7 +113,7 @@ class BuildEnv(gymnasium.Env):
             self.layout, len(self.plan.bricks), self.cameras, self.image_size
         )
         self._state = np.zeros(self.layout.size)
-        self.brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
+        self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
         self._start_episode()
 
@@ -154,7 +154,7 @@ class BuildEnv(gymnasium.Env):
         self._loop = self._new_loop(episode)
         self._start_episode()
         self._reset_needed = False
-        return observe(self), episode_info(self, None, None)
+        return self._observe(), episode_info(self, None, None)
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         require_live_episode(self._reset_needed, self.ended)
@@ -174,7 +174,7 @@ class BuildEnv(gymnasium.Env):
         terminated = not truncated and (success or failure is not None)
         self.ended = terminated or truncated
         return (
-            observe(self),
+            self._observe(),
             float(newly),
             terminated,
             truncated,
@@ -221,6 +221,19 @@ class BuildEnv(gymnasium.Env):
         """Both arms' joint positions and finger gaps as measured now (the state's layout)."""
         return lay.state(self._loop.data, self._loop.handles, self._state).copy()
 
+    def _observe(self) -> dict[str, Any]:
+        loop = self._loop
+        observed: dict[str, Any] = {
+            "state": self.measured_state(),
+            "bricks": loop.data.qpos[self._brick_q],
+            "pick": pick(self.plan),
+            "goals": self.goals.copy(),
+            "tools": lay.tools(loop.data, loop.handles),
+        }
+        if self.cameras:
+            observed["images"] = self.images(self.cameras)
+        return observed
+
     def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
         """What the named cameras see now (names as `layout.camera_names` gives them), at
         `image_size`: the observation's images, or a recorder's at the frames it keeps."""
@@ -237,22 +250,6 @@ class BuildEnv(gymnasium.Env):
     def loop(self) -> BuildLoop:
         """The build this episode runs (its parts, its expert's state)."""
         return self._loop
-
-
-def observe(env: BuildEnv) -> dict[str, Any]:
-    """What the policy sees now (`spaces.observation_space`)."""
-    loop = env.loop
-    observed: dict[str, Any] = {
-        "state": env.measured_state(),
-        "bricks": loop.data.qpos[env.brick_q],
-        "pick": pick(env.plan),
-        "elapsed": np.array([env.steps_taken * env.dt]),
-        "goals": env.goals.copy(),
-        "tools": lay.tools(loop.data, loop.handles),
-    }
-    if env.cameras:
-        observed["images"] = env.images(env.cameras)
-    return observed
 
 
 def run_control_steps(

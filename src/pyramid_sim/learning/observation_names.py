@@ -20,7 +20,6 @@ def environment_names(bricks: int, targets: int) -> tuple[str, ...]:
     return (
         tuple(f"brick{i}.{f}" for i in range(bricks) for f in BRICK_FIELDS)
         + tuple(f"pick.{f}" for f in GOAL_FIELDS)
-        + ("elapsed",)
         + tuple(f"goal{i}.{f}" for i in range(targets) for f in GOAL_FIELDS)
         + tuple(f"{arm}_tool.{f}" for arm in ARMS for f in TOOL_FIELDS)
     )

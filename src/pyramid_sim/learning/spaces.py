@@ -18,8 +18,7 @@ def observation_space(
     layout: lay.Layout, targets: int, cameras: tuple[str, ...], image_size: tuple[int, int]
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
-    rests when fed to the spawn spot), the time elapsed in the episode (s: the phase of a
-    build whose waits end on the other arm's progress), the goals (every target's pose,
+    rests when fed to the spawn spot), the goals (every target's pose,
     in build order: where the bricks must go), the tools (each hand's tool pose, left first:
     where the hands are, without a learner having to learn the arm's kinematics), and each
     camera's image."""
@@ -27,7 +26,6 @@ def observation_space(
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
         "pick": spaces.Box(-np.inf, np.inf, (len(GOAL_FIELDS),), dtype=np.float64),
-        "elapsed": spaces.Box(0.0, np.inf, (1,), dtype=np.float64),
         "goals": spaces.Box(-np.inf, np.inf, (targets, len(GOAL_FIELDS)), dtype=np.float64),
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
     }
@@ -40,9 +38,9 @@ def observation_space(
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
-    """An observation's bricks, pick location, elapsed time, goals and tools as one float32
-    vector, in the order of `observation_names.environment_names`."""
-    parts = [observation[k].ravel() for k in ("bricks", "pick", "elapsed", "goals", "tools")]
+    """An observation's bricks, pick location, goals and tools as one float32 vector, in the
+    order of `observation_names.environment_names`."""
+    parts = [observation[k].ravel() for k in ("bricks", "pick", "goals", "tools")]
     return np.concatenate(parts).astype(np.float32)
 
 
