@@ -29,6 +29,7 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
+from pyramid_sim.choices import FPS_CHOICES
 from pyramid_sim.cli.args import EXIT_USAGE, Parser, number, one_of, output_path, whole
 from pyramid_sim.errors import PyramidSimError
 from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
@@ -96,7 +97,8 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
         default=None,
         help="the action's form (default the recipe's)",
     )
-    parser.add_argument("--fps", type=whole("fps"), default=None, help="steps a second")
+    parser.add_argument("--fps", type=one_of("fps", tuple(map(str, FPS_CHOICES))), default=None,
+                        help="steps a second (default the recipe's)")  # fmt: skip
     parser.add_argument("--episodes", type=whole("episodes"), default=None, help="evaluated")
     parser.add_argument("--workers", type=whole("workers"), default=1, help="recording them")
     parser.add_argument(
@@ -110,7 +112,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
         recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
     given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
              "episodes": args.episodes, "action_mode": args.action_mode,
-             "fps": args.fps}  # fmt: skip
+             "fps": None if args.fps is None else int(args.fps)}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:

@@ -67,6 +67,9 @@ def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, ca
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--action-mode", "ee"])
     assert stopped.value.code == 2 and "invalid choice: 'ee'" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "d"), "--fps", "30"])
+    assert stopped.value.code == 2 and "fps: unknown '30'" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())  # nothing written for any of them
 
 

@@ -40,7 +40,7 @@ def image_size(text: str) -> tuple[int, int]:
 
 
 def noise(text: str) -> float:
-    """DART's noise (rad, or m in the hand modes), refused here when out of range (before
+    """DART's noise (rad, or m in the waypoint mode), refused here when out of range (before
     anything is imported)."""
     value = number("noise")(text)
     if not NOISE.low <= value <= NOISE.high:
