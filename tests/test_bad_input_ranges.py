@@ -64,3 +64,16 @@ def test_a_bound_checks_what_its_text_states():
     for value in (VIDEO_FPS.low - 1, VIDEO_FPS.high + 1, float("nan")):
         with pytest.raises(ConfigError, match=r"fps: .* accepted \[1, 120\]"):
             VIDEO_FPS.check(value)
+
+
+def test_an_unknown_action_mode_is_refused_naming_every_mode():
+    from pyramid_sim.choices import in_words
+    from pyramid_sim.errors import ConfigError
+    from pyramid_sim.learning.contract import check_modes
+
+    with pytest.raises(ConfigError) as refused:
+        check_modes("torque", None)
+    assert str(refused.value) == (
+        "action mode: unknown 'torque'; accepted joint, relative, ee or waypoint"
+    )
+    assert in_words(["a"]) == "a" and in_words([1, 2]) == "1 or 2"

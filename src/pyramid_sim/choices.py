@@ -3,6 +3,7 @@ command line and the settings' checks read: one list of each, here."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Literal, get_args
 
 Arm = Literal["left", "right"]
@@ -41,7 +42,15 @@ EVAL_FIRST_SEED = 100_000
 ENV_ID = "pyramid_sim/Build-v0"
 LEROBOT_ENV_ID = "pyramid_sim/Lerobot-v0"
 
+
+def in_words(options: Iterable[object]) -> str:
+    """Options as a person reads them in an accepted range: `a, b or c`."""
+    *rest, last = map(str, options)
+    return f"{', '.join(rest)} or {last}" if rest else last
+
+
 __all__ = [
+    "in_words",
     "ACTION_MODES",
     "RECORD_ACTION_MODES",
     "HAND_ACTION_MODES",

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
-from .choices import CAMERAS, SCHEDULES, Camera, RobotName, Schedule
+from .choices import CAMERAS, SCHEDULES, Camera, RobotName, Schedule, in_words
 from .errors import ConfigError
 from .params import Bound, check_range, check_section, default
 from .robots import DEFAULT_ROBOT, RobotDescription, robot
@@ -258,8 +258,7 @@ class VideoConfig:
 
 def antialias_text() -> str:
     """The accepted sample counts as a person reads them: `0, 2, 4 or 8`."""
-    *rest, last = map(str, ANTIALIAS_SAMPLES)
-    return f"{', '.join(rest)} or {last}"
+    return in_words(ANTIALIAS_SAMPLES)
 
 
 def check_film(video: VideoConfig, config: SimConfig) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..choices import CAMERAS
+from ..choices import CAMERAS, in_words
 from ..config import (
     SPEEDUP,
     VIDEO_FPS,
@@ -90,7 +90,7 @@ def add_film_settings(p: argparse.ArgumentParser) -> None:
         "--camera",
         type=one_of("camera", CAMERAS),
         metavar="|".join(CAMERAS),
-        help=f"{', '.join(CAMERAS[:-1])} or {CAMERAS[-1]} (default {d.camera})",
+        help=f"{in_words(CAMERAS)} (default {d.camera})",
     )
     p.add_argument(
         "--shadows",

@@ -8,7 +8,7 @@ from typing import Any
 
 import gymnasium
 
-from ..choices import ACTION_MODES
+from ..choices import ACTION_MODES, in_words
 from ..errors import ConfigError
 
 
@@ -36,9 +36,7 @@ def check_modes(action_mode: str, render_mode: str | None) -> None:
     """ConfigError for an action or render mode the environment does not have."""
     if action_mode not in ACTION_MODES:
         raise ConfigError(
-            f"action mode: unknown {action_mode!r}; accepted "
-            + ", ".join(ACTION_MODES[:-1])
-            + f" or {ACTION_MODES[-1]}"
+            f"action mode: unknown {action_mode!r}; accepted {in_words(ACTION_MODES)}"
         )
     if render_mode not in (None, "rgb_array"):
         raise ConfigError(f"render mode: unknown {render_mode!r}; accepted rgb_array")

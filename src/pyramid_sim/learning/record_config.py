@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..choices import RECORD_ACTION_MODES, RECORD_CAMERAS, RECORD_IMAGE_SIZE
+from ..choices import RECORD_ACTION_MODES, RECORD_CAMERAS, RECORD_IMAGE_SIZE, in_words
 from ..config import MotionConfig
 from ..errors import ConfigError
 from ..jobs.backends import check_backend
@@ -47,8 +47,7 @@ class RecordConfig:
         if self.action_mode not in RECORD_ACTION_MODES:
             raise ConfigError(
                 f"action mode: {self.action_mode!r} is not recorded; accepted "
-                + ", ".join(RECORD_ACTION_MODES[:-1])
-                + f" or {RECORD_ACTION_MODES[-1]}"
+                + in_words(RECORD_ACTION_MODES)
             )
         if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
             raise ConfigError(
