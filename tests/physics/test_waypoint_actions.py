@@ -29,13 +29,16 @@ def test_the_experts_waypoints_build_and_the_checker_passes():
     assert env.action_units.names[:5] == ("left/x", "left/y", "left/z", "left/yaw", "left/gripper")
     check_env(env, skip_render_check=True)
     env.reset(seed=3)
-    rewards = 0.0
+    rewards, gaps = 0.0, set()
     while True:
-        _, reward, terminated, truncated, info = env.step(env.expert_action())
+        action = env.expert_action()
+        gaps |= {float(action[4]), float(action[9])}
+        _, reward, terminated, truncated, info = env.step(action)
         rewards += reward
         if terminated or truncated:
             break
     assert terminated and info["is_success"] and rewards == 2, info["failure"]
+    assert gaps == {0.0, np.float32(env.ee.hands.open)}  # open or closed, never between
     env.close()
 
 
@@ -154,4 +157,22 @@ def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_p
         if terminated or truncated:
             break
     assert terminated and info["is_success"]
+    env.close()
+
+
+def test_a_gap_left_between_open_and_closed_closes_the_hand_to_the_servos():
+    """A learner's gap a little short of open still commands the finger servo closed (its
+    force limit then squeezes): read from the compiled model's controls and finger joints."""
+    env = _env()
+    obs, _ = env.reset(seed=0)
+    hands, gaps = env.ee.hands, env.ee.ee.gaps
+    opened = obs["state"][gaps]
+    action = env.ee.hold(env.loop)
+    action[4] = hands.threshold - 0.002  # the left hand: closed; the right stays open
+    for _ in range(env.fps):  # a second: the motion generator limits the fingers' speed too
+        obs, *_ = env.step(action.astype(np.float32))
+    ctrl = env.loop.data.ctrl[env.loop.handles.ctrl_index][gaps]
+    fingers = obs["state"][gaps]
+    assert ctrl[0] == pytest.approx(0.0, abs=1e-9) and ctrl[1] == pytest.approx(hands.open)
+    assert fingers[0] < 0.5 * opened[0] and fingers[1] == pytest.approx(opened[1], abs=1e-3)
     env.close()

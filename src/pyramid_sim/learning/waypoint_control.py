@@ -7,7 +7,9 @@ The arm goes there as the `ee` mode's targets move: straight, at most the hand's
 at its slow speed over the last `NEAR` of the way (a brick is met slowly, as the build's own
 servo moves meet it), its yaw at the hand's turn rate; the IK, its limits, the leash, the box
 and the floor are the `ee` mode's, and its joints go through the motion generator. A waypoint
-that jitters or jumps from one action to the next moves the target no faster for it.
+that jitters or jumps from one action to the next moves the target no faster for it. The
+gap says open or closed, and the hand grips and releases as the scripted builder's does
+(gripper_switch.py).
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from ..core.primitives import StepKind
 from ..physics import names as c
 from ..physics.loop import BuildLoop
 from .ee_control import EndEffectorControl, end_effector
+from .gripper_switch import GripperSwitch
 from .layout import Layout
 
 FIELDS = ("x", "y", "z", "yaw", "gripper")
@@ -41,8 +44,10 @@ class WaypointControl:
         layout: Layout,
         speeds: tuple[float, float, float],
         control_dt: float,
+        hands: GripperSwitch,
     ) -> None:
         self.ee = ee
+        self.hands = hands
         self.speed, self.slow_speed, self.turn_rate = speeds
         self.dt = control_dt
         low, high = [], []
@@ -55,8 +60,11 @@ class WaypointControl:
         self.names = tuple(f"{arm}/{f}" for arm in c.ARMS for f in FIELDS)
 
     def reset(self, loop: BuildLoop) -> None:
-        """Aim each arm where its tool centre is (the `ee` mode's box and floor)."""
+        """Aim each arm where its tool centre is (the `ee` mode's box and floor), its hand as
+        it is commanded."""
         self.ee.reset(loop)
+        gaps = loop.data.ctrl[loop.handles.ctrl_index][self.ee.gaps]
+        self.hands.reset([float(g) for g in gaps])
 
     def command(self, loop: BuildLoop, action: np.ndarray) -> np.ndarray:
         """The joint command for one control step towards the waypoints of `action`."""
@@ -71,12 +79,13 @@ class WaypointControl:
                 way *= speed * self.dt / distance
             turn = math.remainder(yaw - t.yaw, 2 * math.pi)
             turn = max(-self.turn_rate * self.dt, min(self.turn_rate * self.dt, turn))
-            moves[5 * k : 5 * k + 5] = [*way, turn, gap]
+            moves[5 * k : 5 * k + 5] = [*way, turn, self.hands.command(k, gap, self.dt)]
         return self.ee.move(loop, moves)
 
     def expert(self, loop: BuildLoop) -> np.ndarray:
         """Where the scripted builder's current move ends for each arm (of a move up, over and
-        down, the corner it heads for), aimed as its closed loop aims, and its gap now."""
+        down, the corner it heads for), aimed as its closed loop aims, and its hand open or
+        closed as it is gripping or letting go."""
         action: list[float] = []
         for arm in c.ARMS:
             runner = loop.dispatch.runners[arm]
@@ -87,16 +96,15 @@ class WaypointControl:
                 pose = path.heading(runner.elapsed).with_yaw(step.pose.yaw)
             if loop.feedback is not None:
                 pose = loop.feedback.aim(arm, pose)
-            action += [pose.x, pose.y, pose.z, pose.yaw, runner.gap]
+            action += [pose.x, pose.y, pose.z, pose.yaw, self.hands.label(runner)]
         return np.array(action)
 
     def hold(self, loop: BuildLoop) -> np.ndarray:
-        """Stay where aimed, the hands as they are commanded."""
-        gaps = loop.data.ctrl[loop.handles.ctrl_index][self.ee.gaps]
+        """Stay where aimed, the hands as they are."""
         action: list[float] = []
         for k, arm in enumerate(c.ARMS):
             t: Pose = self.ee.targets[arm]
-            action += [t.x, t.y, t.z, t.yaw, gaps[k]]
+            action += [t.x, t.y, t.z, t.yaw, self.hands.held(k)]
         return np.array(action)
 
 
@@ -108,4 +116,5 @@ def waypoints(config: SimConfig, layout: Layout, steps: int) -> WaypointControl:
         layout,
         (motion.speed, motion.slow_speed, motion.turn_rate),
         motion.control_dt,
+        GripperSwitch(config, len(c.ARMS)),
     )
