@@ -12,6 +12,7 @@ import numpy as np
 
 from .action_modes import moved_entries
 from .env import BuildEnv
+from .lead_labels import LeadLabels
 from .spaces import environment_state
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
@@ -120,7 +121,9 @@ def expert_episode(
     environment step (the environment steps at the dataset's rate), at most `step_limit`
     frames, as an evaluation's; the last is done. With
     `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
-    action is still the expert's: what to do from where the arm really is."""
+    action is still the expert's: what to do from where the arm really is. Waypoint labels
+    are led past a move's end (lead_labels.py)."""
+    led = LeadLabels(env.fps, on_frame, (PRIMITIVES.index("grip"), PRIMITIVES.index("release")))
     obs, _ = env.reset(seed=seed)
     executed = JointNoise(env, seed, noise)
     limit = step_limit(len(env.plan.bricks), env.fps)
@@ -131,11 +134,11 @@ def expert_episode(
         state = obs["state"].astype(np.float32)
         environment = environment_state(obs)
         images = env.images(cameras) if cameras else {}
+        hands = obs["tools"][:, :3].copy()
         obs, reward, terminated, truncated, info = env.step(executed(action))
         truncated = truncated or frames + 1 >= limit
         done = terminated or truncated
-        on_frame(
-            Frame(
+        frame = Frame(
                 state,
                 environment,
                 action.astype(np.float32),
@@ -146,7 +149,10 @@ def expert_episode(
                 primitive,
                 brick,
             )  # fmt: skip
-        )
+        if env.action_mode == "waypoint":
+            led(frame, hands)
+        else:
+            on_frame(frame)
         frames += 1
         if done:
             failure = info["failure"] or (None if terminated else f"step limit: {limit} steps")
