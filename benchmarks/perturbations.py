@@ -5,7 +5,7 @@
                                        [--raw] [--action-mode joint|waypoint]
 
 Each row is the expert's episodes on held-out seeds (from 100000) at the `layout` level,
-with its actions perturbed before the environment steps them (learning/perturbations.py):
+with its actions perturbed before the environment steps them (learning/evaluation/perturbations.py):
 white noise every step, each action held some steps then a jump, an offset redrawn every
 second, a delay. `--raw` sends the commands straight to the servos (no motion generator, the
 expert's loop open), as the environment did before the generator. Prints the table;
@@ -26,8 +26,8 @@ ROWS = [("none", 0.0), ("noise", 0.002), ("noise", 0.005), ("hold", 5), ("hold",
 
 
 def run_row(env, perturbation, seeds: range, limit: int) -> dict:
-    from pyramid_sim.learning.action_modes import moved_entries
-    from pyramid_sim.learning.perturbations import Perturber
+    from pyramid_sim.learning.env.action_modes import moved_entries
+    from pyramid_sim.learning.evaluation.perturbations import Perturber
 
     joints = moved_entries(env)
     wins, failures, start = 0, {}, time.perf_counter()
@@ -62,9 +62,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"seeds: {args.seeds}; accepted 1 to 1000")
     try:
         import pyramid_sim
-        from pyramid_sim.learning.env import BuildEnv
-        from pyramid_sim.learning.episode import step_limit
-        from pyramid_sim.learning.perturbations import Perturbation
+        from pyramid_sim.learning.env.env import BuildEnv
+        from pyramid_sim.learning.evaluation.perturbations import Perturbation
+        from pyramid_sim.learning.recording.episode import step_limit
 
         env = BuildEnv(args.structure, layers=args.layers, variation="layout",
                        limit_commands=not args.raw, action_mode=args.action_mode)  # fmt: skip

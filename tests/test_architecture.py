@@ -118,10 +118,10 @@ def test_the_public_api_is_the_objects_its_modules_define_and_the_installed_vers
     assert set(pyramid_sim.__all__) <= home.keys() | assigned
     for name in home.keys() & set(pyramid_sim.__all__):
         assert getattr(pyramid_sim, name) is getattr(importlib.import_module(home[name]), name)
-    assert gymnasium.spec(pyramid_sim.ENV_ID).entry_point == "pyramid_sim.learning.env:BuildEnv"
+    assert gymnasium.spec(pyramid_sim.ENV_ID).entry_point == "pyramid_sim.learning.env.env:BuildEnv"
     assert (
         gymnasium.spec(pyramid_sim.LEROBOT_ENV_ID).entry_point
-        == "pyramid_sim.learning.lerobot_env:make_lerobot_env"
+        == "pyramid_sim.learning.lerobot_plugin.lerobot_env:make_lerobot_env"
     )
     assert pyramid_sim.__version__ == importlib.metadata.version("pyramid_sim")
     assert pyramid_sim.__version__[0].isdigit()

@@ -69,7 +69,7 @@ def test_a_bound_checks_what_its_text_states():
 def test_an_unknown_action_mode_is_refused_naming_every_mode():
     from pyramid_sim.choices import in_words
     from pyramid_sim.errors import ConfigError
-    from pyramid_sim.learning.contract import check_modes
+    from pyramid_sim.learning.task.contract import check_modes
 
     with pytest.raises(ConfigError) as refused:
         check_modes("torque", None)

@@ -22,6 +22,15 @@ LAYERS = (
     ("params", "robots"),
     ("choices", "errors", "version", "resources"),
 )
+# learning/'s rooms, floors in the same sense: lerobot's own cut (envs, datasets, policies,
+# scripts), the dataset's layout beside the environment and never reaching it
+LEARNING_LAYERS = (
+    ("evaluation",),  # policies scored, a lerobot checkpoint among them
+    ("lerobot_plugin",),  # what lerobot's tools load
+    ("recording",),  # the expert's episodes as a dataset
+    ("env", "dataset"),  # the Gymnasium environment; LeRobot's layout
+    ("task",),  # what an episode is and what a policy sees
+)
 ENTRY_POINTS = ("cli", "perf")  # alone may import the package's namespace, as a user would
 
 
@@ -78,20 +87,27 @@ def _room(module: str) -> str:
     return parts[1] if len(parts) > 1 else "api"  # the package's namespace sits with api
 
 
-def _rank(room: str) -> int:
-    for rank, names in enumerate(LAYERS):
+def _learning_room(module: str) -> str:
+    parts = module.split(".")
+    return parts[2]  # the room of a module in it, or of its __init__
+
+
+def _rank(room: str, layers: tuple[tuple[str, ...], ...] = LAYERS) -> int:
+    for rank, names in enumerate(layers):
         if room in names:
             return rank
-    raise AssertionError(f"{room!r} is in no layer: add it to LAYERS")
+    raise AssertionError(f"{room!r} is in no layer: add it to the layers")
 
 
-def _upward(graph: dict[str, set[str]]) -> list[str]:
+def _upward(
+    graph: dict[str, set[str]], room=_room, layers: tuple[tuple[str, ...], ...] = LAYERS
+) -> list[str]:
     """Imports of a layer above, or of a room beside, the importer's."""
     found = []
     for module, targets in sorted(graph.items()):
         for target in sorted(targets):
-            a, b = _room(module), _room(target)
-            if a != b and _rank(b) <= _rank(a):
+            a, b = room(module), room(target)
+            if a != b and _rank(b, layers) <= _rank(a, layers):
                 found.append(f"{module} -> {target}")
     return found
 
@@ -132,6 +148,21 @@ def test_every_import_points_down_the_layers():
     assert _upward(_imports(_modules())) == []
 
 
+def test_learnings_rooms_import_only_the_floors_beneath():
+    inside = f"{PACKAGE}.learning."
+    graph = {
+        m: {t for t in targets if t.startswith(inside)}
+        for m, targets in _imports(_modules()).items()
+        if m.startswith(inside)
+    }
+    assert {_learning_room(m) for m in graph} == {r for f in LEARNING_LAYERS for r in f}
+    assert _upward(graph, _learning_room, LEARNING_LAYERS) == []
+    made_up = {f"{inside}env.env": {f"{inside}recording.episode"}}  # up a floor
+    assert _upward(made_up, _learning_room, LEARNING_LAYERS) == [
+        f"{inside}env.env -> {inside}recording.episode"
+    ]
+
+
 def test_nothing_inside_the_package_imports_its_api_but_the_entry_points():
     graph = _imports(_modules())
     users = sorted(
@@ -148,13 +179,16 @@ def test_the_import_graph_has_no_circle():
 def test_the_lerobot_format_never_reaches_the_environment():
     """The dataset's layout is lerobot's, whoever films the episodes."""
     graph = _imports(_modules())
-    for start in ("learning.lerobot_format", "learning.lerobot_meta", "learning.staging"):
+    starts = ("learning.dataset.lerobot_format", "learning.dataset.lerobot_meta",
+              "learning.recording.staging")  # fmt: skip
+    for start in starts:
         seen, todo = set(), [f"{PACKAGE}.{start}"]
         while todo:
             for nxt in graph[todo.pop()] - seen:
                 seen.add(nxt)
                 todo.append(nxt)
-        assert not {f"{PACKAGE}.learning.env", f"{PACKAGE}.learning.record"} & seen, start
+        env, record = f"{PACKAGE}.learning.env.env", f"{PACKAGE}.learning.recording.record"
+        assert not {env, record} & seen, start
 
 
 def test_the_checks_find_a_function_level_import_an_upward_one_and_a_circle():

@@ -5,7 +5,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from pyramid_sim.learning.lead_labels import ARRIVED, LEAD, LeadLabels
+from pyramid_sim.learning.recording.lead_labels import ARRIVED, LEAD, LeadLabels
 
 FPS = 10
 GRIP = 4

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from pyramid_sim.learning.lerobot_format import _summary
-from pyramid_sim.learning.lerobot_meta import aggregate, episodes_location, merge_stats
+from pyramid_sim.learning.dataset.lerobot_format import _summary
+from pyramid_sim.learning.dataset.lerobot_meta import aggregate, episodes_location, merge_stats
 
 
 def _stats(values: np.ndarray) -> dict:

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from pyramid_sim.learning.lerobot_units import lerobot_units
+from pyramid_sim.learning.task.lerobot_units import lerobot_units
 from pyramid_sim.robots import PRESETS
 
 OURS = tuple(

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.learning.perturbations import OFFSET_PERIOD, Perturbation, Perturber
+from pyramid_sim.learning.evaluation.perturbations import OFFSET_PERIOD, Perturbation, Perturber
 
 JOINTS = np.array([True, True, False])  # two joints and a finger gap
 

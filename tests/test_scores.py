@@ -3,7 +3,7 @@ values, failures grouped by kind, and a summary of rows."""
 
 import pytest
 
-from pyramid_sim.learning.scores import failure_kind, summary, wilson_interval
+from pyramid_sim.learning.evaluation.scores import failure_kind, summary, wilson_interval
 
 
 @pytest.mark.parametrize(

@@ -4,7 +4,7 @@ the pixels around the surface's tone, the same from the same seed."""
 import numpy as np
 import pytest
 
-from pyramid_sim.learning.textures import PATTERNS, pattern, texture_pixels
+from pyramid_sim.learning.task.textures import PATTERNS, pattern, texture_pixels
 
 
 @pytest.mark.parametrize("kind", PATTERNS)

@@ -30,7 +30,7 @@ from .core.seed_pyramids import (
 )
 from .core.structures import STRUCTURES, StructureSpec
 from .errors import ConfigError, MachineError, PyramidSimError, UnreachableError
-from .learning.observation_names import environment_names
+from .learning.task.observation_names import environment_names
 from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
@@ -47,11 +47,12 @@ def _register_env() -> None:
         # The step limit of the defaults: max_sim_time (600 s) at 25 steps a second. An
         # environment made with another fps or time limit passes its own max_episode_steps.
         gymnasium.register(
-            id=ENV_ID, entry_point="pyramid_sim.learning.env:BuildEnv", max_episode_steps=15_000
+            id=ENV_ID, entry_point="pyramid_sim.learning.env.env:BuildEnv", max_episode_steps=15_000
         )
     if LEROBOT_ENV_ID not in gymnasium.registry:  # lerobot's keys: its plugin passes the limit
         gymnasium.register(
-            id=LEROBOT_ENV_ID, entry_point="pyramid_sim.learning.lerobot_env:make_lerobot_env"
+            id=LEROBOT_ENV_ID,
+            entry_point="pyramid_sim.learning.lerobot_plugin.lerobot_env:make_lerobot_env",
         )
 
 

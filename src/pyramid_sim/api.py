@@ -31,8 +31,8 @@ from .output.result import BuildResult
 __all__ = ["build", "evaluate", "plan", "record", "settings", "structure"]
 
 if TYPE_CHECKING:  # the recorder and evaluation need MuJoCo: imported when they run
-    from .learning.evaluate import Evaluation
-    from .learning.record import Recorded
+    from .learning.evaluation.evaluate import Evaluation
+    from .learning.recording.record import Recorded
 
 
 def plan(
@@ -214,7 +214,7 @@ def record(
     """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
     `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
     `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
-    layout or full: learning/variation.py) with its `randomize` parts; `workers` at once, in
+    layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once, in
     processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
     started here). With `noise` (rad), what is executed is the expert's joint targets plus an
     offset drawn each second, the label the expert's, planned from where the arm is (DART).
@@ -223,7 +223,7 @@ def record(
     (with workers, an episode's all at once), `on_episode(episodes in the dataset)` the count
     before the first is filmed and after each lands. `options` as for `build`."""
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
-    from .learning.record import RecordConfig
+    from .learning.recording.record import RecordConfig
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     settings_ = RecordConfig(
@@ -244,7 +244,7 @@ def record(
         action_mode,
     )
     _prepare_gl(render=bool(cameras))
-    from .learning.record import record as run
+    from .learning.recording.record import record as run
 
     return run(Path(out), settings_, on_frame, on_episode)
 
@@ -277,7 +277,7 @@ def evaluate(
     `action_mode` (one of `choices.ACTION_MODES`: as it was trained). `options` as for `build`.
     Returns the `Evaluation` (its scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
-    from .learning.evaluate import EvaluateConfig
+    from .learning.evaluation.evaluate import EvaluateConfig
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     wanted = EvaluateConfig(
@@ -295,6 +295,6 @@ def evaluate(
     if video and out is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
     _prepare_gl(render=bool(video))
-    from .learning.evaluate import evaluate as run
+    from .learning.evaluation.evaluate import evaluate as run
 
     return run(wanted, Path(out) if out is not None else None, on_episode)

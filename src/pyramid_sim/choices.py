@@ -19,10 +19,10 @@ SCHEDULES: tuple[Schedule, ...] = get_args(Schedule)
 ROBOT_NAMES: tuple[RobotName, ...] = get_args(RobotName)
 CAMERAS: tuple[Camera, ...] = get_args(Camera)
 BACKENDS: tuple[Backend, ...] = get_args(Backend)
-# How much one learning episode differs from the next (learning/variation.py).
+# How much one learning episode differs from the next (learning/task/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
-# What an environment's action is (learning/contract.py): joint targets, each joint's change
+# What an environment's action is (learning/task/contract.py): joint targets, each joint's change
 # from where it is (relative), each hand's pose change (ee), or the pose each hand goes to
 # (waypoint); a recording writes all but ee. The last two are hand poses, turned into joints by
 # the IK.

@@ -87,7 +87,7 @@ def test_the_structures_place_and_the_feed_spot_vary_by_centimetres_across_seeds
     """At `layout` (the default) each seed draws the spawn spot, its yaw, and the structure's
     shift and turn; at `fixed` every seed has DE NIRO's layout; the brick on the spot is
     observed where it was fed."""
-    from pyramid_sim.learning.layout import brick_index
+    from pyramid_sim.learning.task.layout import brick_index
 
     env = gymnasium.make(ENV, structure="pyramid", layers=3).unwrapped
     spawns, centres, turns = [], [], []
@@ -254,7 +254,7 @@ def test_an_expert_episode_is_kept_at_the_datasets_rate():
     last one done and successful."""
     import os
 
-    from pyramid_sim.learning.episode import PRIMITIVES, expert_episode
+    from pyramid_sim.learning.recording.episode import PRIMITIVES, expert_episode
 
     os.environ.setdefault("MUJOCO_GL", "egl")
     env = gymnasium.make(ENV, structure="pyramid", layers=1, image_size=(32, 32)).unwrapped
@@ -303,7 +303,7 @@ def test_end_effector_actions_go_through_the_builds_own_ik():
 @pytest.mark.parametrize("fault", ["contact", "speed", "torque", "off_table"])
 def test_each_episode_failure_fires_and_is_named(fault):
     """What ends an episode though a build would go on: each one, made to happen."""
-    from pyramid_sim.learning.outcome import episode_failure
+    from pyramid_sim.learning.task.outcome import episode_failure
 
     env = gymnasium.make(ENV, structure="pyramid", layers=1).unwrapped
     env.reset(seed=0)
@@ -509,7 +509,7 @@ def test_a_layout_that_stands_the_structure_by_the_spot_is_refused():
     """The feeder sets no brick beside one that near: such a layout is refused (a drawn one
     is drawn again)."""
     from pyramid_sim.config import LayoutConfig
-    from pyramid_sim.learning.episodes import check_spot_clear
+    from pyramid_sim.learning.task.episodes import check_spot_clear
 
     near = pyramid_sim.SimConfig(layout=LayoutConfig(structure_shift=(-0.1, 0.0)))
     plan = pyramid_sim.plan("pyramid", layers=3, config=near)
@@ -521,7 +521,7 @@ def test_a_layout_that_stands_the_structure_by_the_spot_is_refused():
 def test_a_layout_the_expert_cannot_build_is_drawn_again_from_the_seed():
     """Seed 100001's first draw stands the 6-brick pyramid by the spot (the feeder stalled
     there): the episode takes the seed's next draw, and says so."""
-    from pyramid_sim.learning import variation as var
+    from pyramid_sim.learning.task import variation as var
 
     env = gymnasium.make(ENV, structure="pyramid", layers=3).unwrapped
     _, info = env.reset(seed=100001)

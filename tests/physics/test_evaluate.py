@@ -57,7 +57,11 @@ def test_the_bounds_score_nothing(policy, kind):
 def test_a_users_factory_is_a_policy():
     """`module:factory`, called with the environment: here the library's own hold-still."""
     evaluation = pyramid_sim.evaluate(
-        "pyramid_sim.learning.policies:HoldStill", "pyramid", layers=1, episodes=1, max_steps=20
+        "pyramid_sim.learning.evaluation.policies:HoldStill",
+        "pyramid",
+        layers=1,
+        episodes=1,
+        max_steps=20,
     )
     assert evaluation.scores["rows"][0]["steps"] == 20
     assert evaluation.scores["failures"] == {"step limit": 1}

@@ -6,9 +6,9 @@ import gymnasium
 import numpy as np
 
 import pyramid_sim
-from pyramid_sim.learning.episode import JointNoise, expert_episode
-from pyramid_sim.learning.perturbations import Perturbation, Perturber
-from pyramid_sim.learning.spaces import environment_state
+from pyramid_sim.learning.evaluation.perturbations import Perturbation, Perturber
+from pyramid_sim.learning.recording.episode import JointNoise, expert_episode
+from pyramid_sim.learning.task.spaces import environment_state
 
 ENV = pyramid_sim.ENV_ID
 TASK = dict(structure="pyramid-even", layers=1, variation="layout")

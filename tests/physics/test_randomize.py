@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pyramid_sim
-from pyramid_sim.learning import randomize as rnd
+from pyramid_sim.learning.task import randomize as rnd
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 ENV = pyramid_sim.ENV_ID
@@ -107,7 +107,7 @@ def test_the_expert_still_builds_under_every_part():
 def test_drawn_textures_are_the_compiled_models_and_the_films():
     """Each surface's texture in the compiled model is the drawn pattern around its own tone
     (every brick its own speckle of one look), and a renderer made for the episode draws it."""
-    from pyramid_sim.learning.textures import texture_pixels
+    from pyramid_sim.learning.task.textures import texture_pixels
 
     env = _env(("textures",), cameras=("overview",), image_size=(48, 64))
     _, info = env.reset(seed=7)

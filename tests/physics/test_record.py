@@ -404,7 +404,7 @@ def test_lerobots_info_holds_only_its_own_keys_and_ours_live_under_meta_pyramid_
 def test_each_landing_rewrites_only_its_own_episodes_file(tmp_path, monkeypatch):
     """The metadata grows as episodes land, not rebuilt whole: with a file a episode, each
     landing writes one row, and the episodes' rows still read back as the dataset's."""
-    from pyramid_sim.learning import lerobot_meta
+    from pyramid_sim.learning.dataset import lerobot_meta
 
     monkeypatch.setattr(lerobot_meta, "EPISODES_PER_FILE", 1)
     written: list[list[int]] = []

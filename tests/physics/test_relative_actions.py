@@ -11,8 +11,8 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
-from pyramid_sim.learning.expert import LEAD
-from pyramid_sim.learning.relative_actions import led
+from pyramid_sim.learning.env.expert import LEAD
+from pyramid_sim.learning.env.relative_actions import led
 
 pytestmark = pytest.mark.physics
 TASK = {"structure": "pyramid-even", "layers": 1}

@@ -12,7 +12,7 @@ import pytest
 
 import pyramid_sim
 from pyramid_sim.config import SimConfig
-from pyramid_sim.learning.env import BuildEnv
+from pyramid_sim.learning.env.env import BuildEnv
 from pyramid_sim.physics.robot_models.so101 import CLOSER
 from pyramid_sim.physics.scene import build_scene
 from pyramid_sim.robots import PRESETS

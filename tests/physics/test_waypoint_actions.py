@@ -10,8 +10,8 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import pyramid_sim
-from pyramid_sim.learning import waypoint_control
-from pyramid_sim.learning.episode import JointNoise
+from pyramid_sim.learning.env import waypoint_control
+from pyramid_sim.learning.recording.episode import JointNoise
 
 ENV = pyramid_sim.ENV_ID
 

@@ -3,7 +3,7 @@
 on a dataset `pyramid-sim record` wrote (the same features, the same names, the same rate).
 
 lerobot imports this package by itself (its distribution's name starts with lerobot_env_);
-the environment is pyramid_sim's `pyramid_sim/Lerobot-v0` (pyramid_sim.learning.lerobot_env).
+the environment is pyramid_sim's `pyramid_sim/Lerobot-v0` (pyramid_sim.learning.lerobot_plugin.lerobot_env).
 """
 
 from __future__ import annotations

@@ -191,7 +191,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
 
 def cmd_reach(args: argparse.Namespace) -> int:
     from ..core.structures import SIZE_KNOB, StructureSpec
-    from ..learning.layout_reach import largest_in_every_layout
+    from ..learning.task.layout_reach import largest_in_every_layout
     from ..physics.reach import ReachChecker, held_fixed
 
     arm_sets: tuple[ArmChoice, ...] = ARM_CHOICES if args.arms == "all" else (args.arms,)

@@ -1,41 +1,21 @@
-"""For robot learning: the build as a Gymnasium environment (`env.BuildEnv`, registered as
-`pyramid_sim/Build-v0` when pyramid_sim is imported), each episode drawn from its seed
-(`variation`, `randomize`, made by `episodes`; `layout_reach` says how large a structure every
-layout reaches), what it observes and commands (`layout`, `spaces`, `observation_names`,
-`footprints`, `ee_control`, and the raw path's `target_spline`; the motion generator is the
-arm's own, in physics/), the scripted builder as a policy (`expert`),
-its episodes kept at a dataset's rate (`episode`) and recorded as LeRobot datasets (`record`,
-in the v3.0 layout of `lerobot_format` and `lerobot_meta`, filmed apart and landed in order
-by `staging`), scored (`evaluate`, `policies`, `scores`) and offered to lerobot
-(`lerobot_env`, `lerobot_policy`).
+"""For robot learning, grouped by role as lerobot groups its own (envs, datasets, policies,
+scripts), each floor importing only those below it (tests/test_layers.py):
+
+- `task`: what an episode is and what a policy sees of it (variation, randomization, the
+  observation's layout, spaces and named entries, the footprint, rewards and endings);
+- `env`: the build as a Gymnasium environment (`env.env.BuildEnv`, registered as
+  `pyramid_sim/Build-v0` when pyramid_sim is imported), its action modes and the scripted
+  builder as a policy (`env.expert`);
+- `dataset`: LeRobot's v3.0 layout and metadata;
+- `recording`: the expert's episodes at a dataset's rate, filmed and landed as a dataset
+  (`pyramid-sim record`);
+- `lerobot_plugin`: what lerobot's own tools load (`lerobot-eval`'s environment, a
+  `lerobot-train` checkpoint as a policy);
+- `evaluation`: policies scored over held-out seeds (`pyramid-sim evaluate`), a lerobot
+  checkpoint among them, and the perturbations their errors are measured with.
 
 Importing the package imports none of its modules (the environment needs MuJoCo); `__all__`
-names them.
+names the rooms.
 """
 
-__all__ = [
-    "ee_control",
-    "env",
-    "episode",
-    "episodes",
-    "evaluate",
-    "expert",
-    "footprints",
-    "layout",
-    "layout_reach",
-    "lerobot_env",
-    "lerobot_format",
-    "lerobot_meta",
-    "observation_names",
-    "outcome",
-    "perturbations",
-    "policies",
-    "randomize",
-    "record",
-    "scores",
-    "spaces",
-    "staging",
-    "target_spline",
-    "textures",
-    "variation",
-]
+__all__ = ["dataset", "env", "evaluation", "lerobot_plugin", "recording", "task"]

@@ -12,8 +12,8 @@ from typing import Any
 from ..choices import RECORD_CAMERAS, RECORD_FPS, RECORD_IMAGE_SIZE, RobotName
 from ..config import SimConfig
 from ..core.structures import StructureSpec
-from ..learning.env import BuildEnv
-from ..learning.record import RecordConfig, record
+from ..learning.env.env import BuildEnv
+from ..learning.recording.record import RecordConfig, record
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
 

@@ -84,7 +84,7 @@ class RobotDescription:
     # Baxter's controllers); where False they hold it within their torque, and sag
     pick_clearance: float = 0.0  # m the tool point stands off a brick's centre towards the
     # fixed jaw's side (tool -y) until the grip: a one-jaw hand cannot open that side
-    # As lerobot records this robot (learning/lerobot_units.py): its robot_type, each arm's
+    # As lerobot records this robot (learning/task/lerobot_units.py): its robot_type, each arm's
     # motors by lerobot's names (joints in degrees, the gripper 0-100 over the jaw's joint
     # range `lerobot_gripper_span`, rad). Empty: pyramid_sim's own names and SI units.
     lerobot_robot_type: str = ""

@@ -1,0 +1,47 @@
+"""What each action mode needs beside the joint modes' parts: the hand modes' controller (the
+`ee` mode's pose changes or the `waypoint` mode's poses, through the IK) and how lerobot
+records their actions, and which of an action's entries move an arm."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from gymnasium import spaces
+
+from ...choices import HAND_ACTION_MODES
+from ...config import SimConfig
+from ..task.layout import Layout
+from ..task.lerobot_units import LerobotUnits, own_units
+from ..task.spaces import joint_space
+from .ee_control import EndEffectorControl, end_effector
+from .relative_actions import relative_space
+from .waypoint_control import WaypointControl, waypoints
+
+if TYPE_CHECKING:
+    from .env import BuildEnv
+
+
+def action_parts(
+    action_mode: str, config: SimConfig, layout: Layout, steps: int, units: LerobotUnits
+) -> tuple[EndEffectorControl | WaypointControl, LerobotUnits, spaces.Box]:
+    """The hands' controller for `action_mode` (an `ee` one serves the joint modes' expert
+    too), the units lerobot records its actions in (the joint command's `units`, or a hand's
+    pose) and the action space."""
+    if action_mode == "waypoint":
+        control: EndEffectorControl | WaypointControl = waypoints(config, layout, steps)
+    else:
+        control = end_effector(config, layout, steps)
+    if action_mode in HAND_ACTION_MODES:
+        return control, own_units(control.names, units.robot_type), control.space
+    space = relative_space(layout) if action_mode == "relative" else joint_space(layout)
+    return control, units, space
+
+
+def moved_entries(env: BuildEnv) -> np.ndarray:
+    """Which of the action's entries move an arm (True), not a hand's fingers or yaw: the
+    joints, or in the hand modes each hand's x, y and z (what DART's noise and the
+    perturbations offset)."""
+    if env.action_mode in HAND_ACTION_MODES:
+        return np.array([k % 5 < 3 for k in range(len(env.ee.names))])
+    return env.layout.joints

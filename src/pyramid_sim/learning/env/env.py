@@ -1,0 +1,284 @@
+"""The build as a Gymnasium environment: one episode is one build of a structure by two arms.
+
+A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
+targets and finger gaps (`layout.Layout`), ramped across the control and physics steps it
+spans (`action_mode="relative"`: each joint's change from where it is; `"ee"`: each arm's
+tool-pose change; `"waypoint"`: the tool pose each arm goes to). The environment feeds bricks to the spawn spot, and judges placements and
+failures from what happens, whoever drives it;
+`ExpertPolicy` (`expert_action()`) is the scripted builder (scheduler, primitives, mink IK)
+as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
+structure stands, and at `full` the physical and visual randomization) from its seed: `reset(
+seed=s)` is the same episode bit for bit, `reset()` the next one of the environment's stream.
+
+Reward: +1 for each brick that comes to rest on its target within the build's tolerances.
+Terminated on success (every target holds a brick at rest) or failure (`info["failure"]` says
+which: a brick off the table, arm-arm contact, a joint past its speed or torque limit, MuJoCo's
+warnings, the expert giving a brick up); truncated at the build's time limit.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium
+import mink
+import numpy as np
+
+from ...choices import HAND_ACTION_MODES, ArmChoice
+from ...options import resolve
+from ...physics.loop import BuildLoop
+from ...physics.motion_generator import arm_motion
+from ...physics.stops import no_motion_reason
+from ..task import layout as lay
+from ..task import randomize as rnd
+from ..task import variation as var
+from ..task.contract import check_modes, check_reset_options, require_live_episode
+from ..task.episodes import EpisodeMaker
+from ..task.footprints import draw_goals
+from ..task.lerobot_units import lerobot_units
+from ..task.outcome import PlacementWatch, episode_failure, episode_info
+from ..task.spaces import checked_action, goals, observation_space, pick, renderer
+from . import relative_actions as rel
+from .action_modes import action_parts
+from .expert import ExpertPolicy
+from .target_spline import spline_ramp
+
+CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
+# told within 0.1 s of simulated time
+OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
+       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints")  # fmt: skip
+
+
+class BuildEnv(gymnasium.Env):
+    """Two arms build `structure`; keywords as `pyramid_sim.build` takes them, and the
+    environment's own (the module's docstring, docs/learning.md)."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
+    _reset_needed = True  # Gymnasium's contract: reset before the first step
+
+    def __init__(
+        self,
+        structure: str = "pyramid-even",
+        *,
+        arms: ArmChoice = "both",
+        variation: str = var.DEFAULT_LEVEL,
+        fps: int = lay.DEFAULT_FPS,
+        limit_commands: bool = True,
+        render_mode: str | None = None,
+        width: int = 640,
+        height: int = 480,
+        camera_name: str = "overview",
+        cameras: tuple[str, ...] = (),
+        image_size: tuple[int, int] = (224, 224),
+        randomize: tuple[str, ...] = (),
+        action_mode: str = "joint",
+        footprints: bool = True,
+        **options: Any,
+    ) -> None:
+        check_modes(action_mode, render_mode)
+        self.action_mode, self.render_mode = action_mode, render_mode
+        options = dict(options)
+        self.config, spec = resolve(structure, options.pop("config", None), options, own=OWN)
+        robot = self.config.robot_description
+        self.variation = var.check_level(variation)
+        self.randomize = var.randomized(variation, rnd.check_parts(tuple(randomize)))
+        self.control_steps = lay.control_steps(fps, self.config.motion.control_dt)
+        self.fps, self.dt = fps, 1.0 / fps
+        self.metadata = {**self.metadata, "render_fps": fps}
+        self.cameras = lay.check_cameras(cameras, robot)
+        self.image_size = lay.check_image_size(image_size)
+        self.render_size = lay.check_image_size((height, width))
+        self.camera_name = lay.check_cameras((camera_name,), robot)[0]
+        self._camera_ids = lay.camera_names(robot)
+        self.structure_spec, self.arms = spec, arms
+        self.limit_commands = bool(limit_commands)
+        self.footprints = bool(footprints)  # the targets drawn on the table for the cameras
+        self.seed_of_episode = self.config.seed
+        self._renderer: Any = None
+        self._eyes: Any = None  # the cameras' renderer, made at the first observation
+        # refuses a structure out of reach, before physics
+        self.episodes = EpisodeMaker(self.config, spec, arms, self.variation, self.randomize)
+        self._loop = self._new_loop(self.config.seed)
+        self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
+        # the state and joint command as lerobot records this robot
+        self.lerobot_units = lerobot_units(robot, self.layout.names)
+        self.ee, self.action_units, self.action_space = action_parts(
+            action_mode, self.config, self.layout, self.control_steps, self.lerobot_units
+        )
+        self.generator = arm_motion(self.config)
+        self._low = self.action_space.low.astype(np.float64)
+        self._high = self.action_space.high.astype(np.float64)
+        self.observation_space = observation_space(
+            self.layout, len(self.plan.bricks), self.cameras, self.image_size
+        )
+        self._state = np.zeros(self.layout.size)
+        self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
+        self._expert = ExpertPolicy(self)
+        self._start_episode()
+
+    def _new_loop(self, seed: int) -> BuildLoop:
+        """The episode of `seed`, on a new compiled scene if its renderers' is gone."""
+        compiled = self.episodes.compiled
+        loop = self.episodes.loop(seed)
+        if self.episodes.compiled is not compiled:
+            self.close()  # a renderer is made for one compiled scene
+        self.plan, self.drawn = loop.plan, self.episodes.drawn
+        return loop
+
+    def _start_episode(self) -> None:
+        loop = self._loop
+        loop.feed_spot()  # the first brick on the spot before the first observation
+        self.placing = PlacementWatch(loop)
+        self.goals = goals(self.plan)  # the targets' poses, build order
+        held = loop.data.ctrl[loop.handles.ctrl_index].copy()
+        self._command = (held, held)  # the last target, and where the ramp left the command
+        self.generator.reset(held)
+        self.ee.reset(loop)
+        self._expert.reset()
+        self._steps = 0
+        self.steps_taken = 0  # environment steps in this episode
+        self.ended = False
+
+    # --- the Gymnasium API ---------------------------------------------------------------
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[dict[str, Any], dict[str, Any]]:
+        """A new build from the start: the episode of `seed`, or without one the next seed of
+        the environment's random stream. It takes no options (None or {})."""
+        check_reset_options(options)
+        super().reset(seed=seed)
+        episode = seed if seed is not None else int(self.np_random.integers(2**32))
+        lay.check_seed(episode)
+        self.seed_of_episode = episode
+        self._loop = self._new_loop(episode)
+        self._start_episode()
+        self._reset_needed = False
+        return self._observe(), episode_info(self, None, None)
+
+    def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        require_live_episode(self._reset_needed, self.ended)
+        names = self.ee.names if self.action_mode in HAND_ACTION_MODES else self.layout.names
+        target = checked_action(action, self._low, self._high, names)
+        if self.action_mode == "relative":
+            target = rel.absolute(target, self.measured_state(), self.layout)
+        self.steps_taken += 1
+        ramp = None
+        if self.action_mode not in HAND_ACTION_MODES and not self.limit_commands:
+            ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
+        failure, newly = run_control_steps(self, target, ramp)
+        loop = self._loop
+        self.generator.lag()  # its peak is the episode's (0 where it is not used)
+        success = self.placing.count == len(self.plan.bricks)
+        truncated = not success and loop.data.time > self.config.max_sim_time
+        terminated = not truncated and (success or failure is not None)
+        self.ended = terminated or truncated
+        return (
+            self._observe(),
+            float(newly),
+            terminated,
+            truncated,
+            episode_info(self, failure, success),
+        )
+
+    def expert_action(self) -> np.ndarray:
+        """The scripted builder's action for this step (`ExpertPolicy.act`)."""
+        return self._expert.act()
+
+    def render(self) -> np.ndarray | None:
+        """`camera_name`'s view at `width` x `height` as an RGB array (render_mode
+        "rgb_array")."""
+        if self.render_mode != "rgb_array":
+            return None
+        if self._renderer is None:
+            height, width = self.render_size
+            self._renderer = renderer(self._loop.model, width, height)
+        self._renderer.update_scene(self._loop.data, self._camera_ids[self.camera_name])
+        draw_goals(self, self._renderer.scene)
+        return self._renderer.render()
+
+    def close(self) -> None:
+        """Close the renderers (the next picture makes new ones)."""
+        for name in ("_renderer", "_eyes"):
+            renderer = getattr(self, name, None)
+            if renderer is not None:
+                renderer.close()
+                setattr(self, name, None)
+
+    # --- what a step reads and writes --------------------------------------------------------
+    def held_command(self) -> np.ndarray:
+        """The command that keeps both arms and hands as they are commanded now (in the hand
+        modes, the action that does)."""
+        if self.action_mode in HAND_ACTION_MODES:
+            return self.ee.hold(self._loop).astype(np.float32)
+        loop = self._loop
+        held = loop.data.ctrl[loop.handles.ctrl_index]
+        if self.action_mode == "relative":
+            return rel.relative(held, self.measured_state(), self.layout)
+        return held.astype(np.float32)
+
+    def measured_state(self) -> np.ndarray:
+        """Both arms' joint positions and finger gaps as measured now (the state's layout)."""
+        return lay.state(self._loop.data, self._loop.handles, self._state).copy()
+
+    def _observe(self) -> dict[str, Any]:
+        loop = self._loop
+        observed: dict[str, Any] = {
+            "state": self.measured_state(),
+            "bricks": loop.data.qpos[self._brick_q],
+            "pick": pick(self.plan),
+            "goals": self.goals.copy(),
+            "tools": lay.tools(loop.data, loop.handles),
+        }
+        if self.cameras:
+            observed["images"] = self.images(self.cameras)
+        return observed
+
+    def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
+        """What the named cameras see now (names as `layout.camera_names` gives them), at
+        `image_size`: the observation's images, or a recorder's at the frames it keeps."""
+        if self._eyes is None:
+            self._eyes = renderer(self._loop.model, self.image_size[1], self.image_size[0])
+        images = {}
+        for camera in cameras:
+            self._eyes.update_scene(self._loop.data, self._camera_ids[camera])
+            draw_goals(self, self._eyes.scene)
+            images[camera] = self._eyes.render()
+        return images
+
+    @property
+    def loop(self) -> BuildLoop:
+        """The build this episode runs (its parts, its expert's state)."""
+        return self._loop
+
+
+def run_control_steps(
+    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None
+) -> tuple[str | None, int]:
+    """One environment step's control steps toward `target`: why the episode failed, if it
+    did, and how many targets newly hold a brick."""
+    loop, steps = env.loop, env.control_steps
+    failure: str | None = None
+    newly = 0
+    for k in range(1, steps + 1):
+        try:
+            failure = loop.apply(command_at(env, target, ramp, k / steps))
+        except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
+            failure = no_motion_reason(loop.data.time)
+        newly += env.placing.update(loop)
+        env._steps += 1
+        failure = failure or episode_failure(loop, env._steps % CHECK_EVERY == 0)
+        if failure is not None or env.placing.count == len(env.plan.bricks):
+            break
+    return failure, newly
+
+
+def command_at(
+    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None, share: float
+) -> np.ndarray:
+    """The command for one control step, `share` through an environment step toward `target`:
+    the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
+    if env.action_mode in HAND_ACTION_MODES:  # the IK's joints, through the generator
+        command = env.ee.command(env.loop, target)
+        return env.generator.step(command) if env.limit_commands else command
+    return env.generator.step(target) if ramp is None else ramp(share)

@@ -1,0 +1,113 @@
+"""The policies an evaluation drives: the scripted expert, two bounds (`zero` holds still,
+`random` samples the action space), a `module:factory` of the user's, and a lerobot checkpoint
+folder (where lerobot is installed). Each is an object with `act(observation) -> action`
+and `reset()`, made for one environment."""
+
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+from typing import Any, Protocol
+
+import numpy as np
+
+from ...errors import ConfigError
+from ..env.expert import ExpertPolicy
+
+NAMED = ("expert", "zero", "random")
+
+
+class Policy(Protocol):
+    """What an evaluation drives: reset at each episode's start, then asked once a step."""
+
+    def reset(self) -> None: ...
+
+    def act(self, observation: Any) -> np.ndarray: ...
+
+
+class HoldStill:
+    """The `zero` policy: every joint held where the episode began, the hands as they were."""
+
+    def __init__(self, env: Any) -> None:
+        self.env = env.unwrapped
+        self._held: np.ndarray | None = None
+
+    def reset(self) -> None:
+        self._held = None
+
+    def act(self, observation: Any) -> np.ndarray:
+        if self._held is None:
+            self._held = self.env.held_command()
+        return self._held
+
+
+class RandomActions:
+    """The `random` policy: the action space sampled, seeded by the episode's seed."""
+
+    def __init__(self, env: Any) -> None:
+        self.env = env.unwrapped
+
+    def reset(self) -> None:
+        self.env.action_space.seed(self.env.seed_of_episode)
+
+    def act(self, observation: Any) -> np.ndarray:
+        return np.asarray(self.env.action_space.sample())
+
+
+class _Function:
+    """A plain function of the observation as a policy."""
+
+    def __init__(self, function: Any) -> None:
+        self.function = function
+
+    def reset(self) -> None:
+        return None
+
+    def act(self, observation: Any) -> np.ndarray:
+        return np.asarray(self.function(observation))
+
+
+def make_policy(spec: str, env: Any) -> Policy:
+    """The policy `spec` names for `env`: expert, zero, random, `module:factory` (called with
+    the environment, it returns a policy, or a function of the observation), or a lerobot
+    checkpoint folder. ConfigError naming what is accepted otherwise; MachineError for a
+    checkpoint where lerobot is not installed."""
+    if spec == "expert":
+        return ExpertPolicy(env)
+    if spec == "zero":
+        return HoldStill(env)
+    if spec == "random":
+        return RandomActions(env)
+    if Path(spec).is_dir():
+        from ..lerobot_plugin.lerobot_policy import LerobotPolicy
+
+        return LerobotPolicy(Path(spec), env)
+    module, _, name = spec.partition(":")
+    if not module or not name:
+        raise ConfigError(
+            f"policy: {spec!r} is not one; accepted {', '.join(NAMED)}, module:factory, or a "
+            "lerobot checkpoint folder"
+        )
+    try:
+        factory = getattr(importlib.import_module(module), name)
+    except (ImportError, AttributeError) as err:
+        raise ConfigError(
+            f"policy: {spec!r} cannot be loaded ({err}); accepted module:factory"
+        ) from None
+    try:
+        made = factory(env)
+    except Exception as err:  # the user's code: one line naming it, not a traceback
+        raise ConfigError(
+            f"policy: {spec!r} failed to make its policy ({type(err).__name__}: {err}); "
+            "accepted a factory that returns a policy for the environment"
+        ) from err
+    if hasattr(made, "act"):
+        if not hasattr(made, "reset"):
+            made.reset = lambda: None
+        return made
+    if callable(made):
+        return _Function(made)
+    raise ConfigError(
+        f"policy: {spec!r} returned {type(made).__name__}; accepted an object with act(), or a "
+        "function of the observation"
+    )

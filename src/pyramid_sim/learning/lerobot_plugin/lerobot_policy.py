@@ -1,0 +1,72 @@
+"""A policy trained with `lerobot-train` on a recorded dataset, driven in the environment as
+`lerobot-eval` drives it: the checkpoint's own pre- and post-processors (normalization) around
+`select_action`, on the CPU. Needs lerobot (and torch), which pyramid_sim does not depend on:
+it is imported here only, when a checkpoint folder is asked for."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ...errors import ConfigError, MachineError
+from ..recording.episode import task_text
+from .lerobot_env import lerobot_keys
+
+
+class LerobotPolicy:
+    """The policy saved in `folder` (a checkpoint's pretrained_model: config.json and
+    model.safetensors), for the BuildEnv `env`."""
+
+    def __init__(self, folder: Path, env: Any) -> None:
+        if not (folder / "config.json").is_file():
+            raise ConfigError(
+                f"policy: {str(folder)!r} holds no config.json; accepted a lerobot checkpoint's "
+                "pretrained_model folder"
+            )
+        try:
+            from lerobot.configs.policies import PreTrainedConfig
+            from lerobot.envs.utils import preprocess_observation
+            from lerobot.policies import make_pre_post_processors
+            from lerobot.policies.factory import get_policy_class
+        except ImportError:
+            raise lerobot_missing() from None
+        config = PreTrainedConfig.from_pretrained(str(folder))
+        config.device = "cpu"
+        self.policy = get_policy_class(config.type).from_pretrained(str(folder), config=config)
+        self.policy.eval()
+        self.pre, self.post = make_pre_post_processors(
+            policy_cfg=self.policy.config,
+            pretrained_path=str(folder),
+            preprocessor_overrides={"device_processor": {"device": "cpu"}},
+        )
+        self._to_tensors = preprocess_observation
+        self.task = task_text(env.unwrapped)
+        self.units = env.unwrapped.lerobot_units
+        self.action_units = env.unwrapped.action_units
+
+    def reset(self) -> None:
+        self.policy.reset()  # an action chunk is not carried into the next episode
+
+    def act(self, observation: Any) -> np.ndarray:
+        import torch
+
+        batch = {
+            k: (np.expand_dims(v, 0) if k != "pixels" else {c: i[None] for c, i in v.items()})
+            for k, v in lerobot_keys(observation, self.units).items()
+        }
+        tensors = self._to_tensors(batch)
+        tensors["task"] = [self.task]
+        with torch.inference_mode():
+            action = self.post(self.policy.select_action(self.pre(tensors)))
+        theirs = action.to("cpu").numpy()[0]  # in lerobot's units for the robot, as recorded
+        return np.asarray(self.action_units.from_lerobot(theirs), dtype=np.float32)
+
+
+def lerobot_missing() -> MachineError:
+    """The error for a checkpoint where lerobot cannot be imported."""
+    return MachineError(
+        "policy: a lerobot checkpoint needs lerobot, which is not installed here (it brings "
+        "torch: install it in a venv of its own with pyramid_sim, see docs/evaluation.md)"
+    )

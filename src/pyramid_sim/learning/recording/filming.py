@@ -1,0 +1,133 @@
+"""An episode of the scripted expert filmed into a LeRobot episode's files: the features a
+recording's frames carry, the roll-out, and the same film run here or in a worker (the
+stager, learning/recording/staging.py, is handed `film_staged` or a `FilmAway`)."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..dataset import lerobot_format as fmt
+from ..env.env import BuildEnv
+from ..task.observation_names import environment_names
+from .episode import Frame, expert_episode
+from .record_config import RecordConfig
+from .staging import staging_folder
+
+
+def make_env(config: RecordConfig) -> BuildEnv:
+    """The environment a recording's episodes run in, stepping at its frame rate."""
+    return BuildEnv(
+        config.structure,
+        variation=config.variation,
+        fps=config.fps,
+        limit_commands=config.limit_commands,
+        image_size=config.image_size,
+        randomize=config.randomize,
+        action_mode=config.action_mode,
+        **config.options,
+    )
+
+
+def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
+    """The dataset's per-frame features, from the environment's layout."""
+    names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
+    actions = env.action_units.names  # a hand's pose for the waypoint mode
+    height, width = config.image_size
+    environment = environment_names(env.layout.bricks, len(env.plan.bricks))
+    found = {
+        "observation.state": fmt.Feature("float32", (len(names),), names),
+        "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),
+        "action": fmt.Feature("float32", (len(actions),), actions),
+    }
+    for camera in config.cameras:
+        found[f"observation.images.{camera}"] = fmt.Feature("video", (height, width, 3))
+    found["next.reward"] = fmt.Feature("float32", (1,))
+    found["next.done"] = fmt.Feature("bool", (1,))
+    found["next.success"] = fmt.Feature("bool", (1,))
+    for arm in ("left", "right"):
+        found[f"primitive.{arm}"] = fmt.Feature("int64", (1,))  # an index into PRIMITIVES
+        found[f"brick.{arm}"] = fmt.Feature("int64", (1,))  # build order, -1 for none
+    return found
+
+
+def _frame_values(frame: Frame, cameras: tuple[str, ...], env: BuildEnv) -> dict[str, Any]:
+    values: dict[str, Any] = {
+        "observation.state": env.lerobot_units.to_lerobot(frame.state),
+        "observation.environment_state": frame.environment,
+        "action": env.action_units.to_lerobot(frame.action),
+        "next.reward": frame.reward,
+        "next.done": frame.done,
+        "next.success": frame.success,
+        "primitive.left": frame.primitive[0],
+        "primitive.right": frame.primitive[1],
+        "brick.left": frame.brick[0],
+        "brick.right": frame.brick[1],
+    }
+    for camera in cameras:
+        values[f"observation.images.{camera}"] = frame.images[camera]
+    return values
+
+
+def film_staged(
+    env: BuildEnv,
+    config: RecordConfig,
+    episode: int,
+    out: Path,
+    on_frame: Callable[[int, int], Any] | None = None,
+) -> dict[str, Any]:
+    """Film one episode into its staging folder under `out`: how it ended, its draw and its
+    row (frames indexed from 0)."""
+    root = staging_folder(out, episode)
+    shutil.rmtree(root, ignore_errors=True)
+    files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
+    end, row = film_episode(env, files, config, on_frame)
+    files.commit()  # into the staging folder: the dataset sees nothing yet
+    return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
+
+
+_WORKER_ENV: dict[str, Any] = {}  # this process's environment and the recording it is for
+
+
+@dataclass(frozen=True)
+class FilmAway:
+    """An episode filmed in a worker process or a Ray task, its environment made once per
+    process (picklable: the stager hands it to the job runner)."""
+
+    config: RecordConfig
+
+    def __call__(self, episode: int, out: Path) -> dict[str, Any]:
+        if _WORKER_ENV.get("config") != self.config:  # a Ray worker may serve two recordings
+            if "env" in _WORKER_ENV:
+                _WORKER_ENV.pop("env").close()
+            _WORKER_ENV["env"], _WORKER_ENV["config"] = make_env(self.config), self.config
+        return film_staged(_WORKER_ENV["env"], self.config, episode, out)
+
+
+def film_episode(
+    env: BuildEnv,
+    files: fmt.EpisodeFiles,
+    config: RecordConfig,
+    on_frame: Callable[[int, int], Any] | None,
+) -> tuple[Any, dict[str, Any]]:
+    """Roll the expert out into `files`; how it ended and its metadata row. A run stopped
+    midway leaves none of the episode's files."""
+    frames = 0
+
+    def keep(frame: Frame) -> None:
+        nonlocal frames
+        files.add(_frame_values(frame, config.cameras, env))
+        frames += 1
+        if on_frame is not None:
+            on_frame(files.episode, frames)
+
+    try:
+        seed = config.first_seed + files.episode
+        end = expert_episode(env, seed, config.cameras, keep, config.noise)
+        return end, files.close()
+    except BaseException:
+        files.abort()
+        raise

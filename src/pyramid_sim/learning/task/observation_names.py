@@ -1,0 +1,25 @@
+"""The named entries of what a policy observes beyond its own joints, held once for the
+environment, a recording and lerobot's plugin. Pure: no MuJoCo."""
+
+from __future__ import annotations
+
+from ...choices import ARMS
+
+BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
+GOAL_FIELDS = ("x", "y", "z", "yaw")  # a target's position (m) and yaw (rad), world frame
+TOOL_FIELDS = ("x", "y", "z", "yaw")  # a hand's tool centre (m) and yaw (rad), world frame
+
+
+def environment_names(bricks: int, targets: int) -> tuple[str, ...]:
+    """The entries of a recording's `observation.environment_state` and of lerobot's
+    `environment_state`: every magazine brick's pose, the pick location's (where the next
+    brick is fed: the spot moves from one episode to the next, and a brick's own entries span
+    the whole table over an episode, so its few centimetres there are lost in them), every
+    target's in build order, then each hand's tool pose, left first (as a real arm reports
+    it: its forward kinematics)."""
+    return (
+        tuple(f"brick{i}.{f}" for i in range(bricks) for f in BRICK_FIELDS)
+        + tuple(f"pick.{f}" for f in GOAL_FIELDS)
+        + tuple(f"goal{i}.{f}" for i in range(targets) for f in GOAL_FIELDS)
+        + tuple(f"{arm}_tool.{f}" for arm in ARMS for f in TOOL_FIELDS)
+    )

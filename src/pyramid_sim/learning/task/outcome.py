@@ -1,0 +1,102 @@
+"""What a step of the environment earns and what ends its episode: targets that have come to
+hold a brick at rest (the reward), and failures the build's own stops do not end on at once
+(a brick off the table, arm-arm contact, a joint past its speed or torque limit)."""
+
+from __future__ import annotations
+
+import math
+from copy import deepcopy
+from typing import Any
+
+import numpy as np
+
+from ...output.judge import judge, placement_errors, within
+from ...output.result import Tolerances
+from ...physics.loop import BuildLoop
+from .layout import brick_index
+
+REST_SPEED = 1e-3  # m/s: a brick slower than this is at rest
+OFF_TABLE = 0.05  # m below the table top: a brick down there has left it
+
+
+class PlacementWatch:
+    """The targets of a build that hold a brick at rest within the tolerances, found once."""
+
+    def __init__(self, loop: BuildLoop, tolerances: Tolerances = Tolerances()) -> None:
+        h = loop.handles  # addresses are the same in every episode's compiled scene
+        self.tolerances = tolerances
+        self._lin_vel = np.array([[v, v + 1, v + 2] for v in h.brick_dofs])
+        self._xy = brick_index(h)[:, :2]
+        self.placed: dict[int, int] = {}  # build-order index -> slot of the brick resting there
+
+    @property
+    def count(self) -> int:
+        return len(self.placed)
+
+    def update(self, loop: BuildLoop) -> int:
+        """How many targets have newly come to hold a brick at rest: the full check only for
+        a resting brick across from a target."""
+        d, h = loop.data, loop.handles
+        spawned = loop.spawner.next_slot
+        speeds = np.linalg.norm(d.qvel[self._lin_vel[:spawned]], axis=1)
+        resting = np.flatnonzero(speeds <= REST_SPEED)
+        if resting.size == 0:
+            return 0
+        xy = d.qpos[self._xy[resting]]
+        near = self.tolerances.xy_mm / 1000.0
+        newly = 0
+        for target in loop.plan.bricks:
+            if target.index in self.placed:
+                continue
+            pose = target.target.pose
+            for slot in resting[np.hypot(xy[:, 0] - pose.x, xy[:, 1] - pose.y) <= near]:
+                q = h.brick_qpos[slot]
+                errors = placement_errors(d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], pose)
+                if within(self.tolerances, *errors):
+                    self.placed[target.index] = int(slot)
+                    newly += 1
+                    break
+        return newly
+
+
+def episode_failure(loop: BuildLoop, reduce: bool) -> str | None:
+    """A failure that ends an episode though the build's own stops go on (a build recovers
+    from a drop; an episode ends on a brick off the table); `reduce` folds the joint
+    monitor's buffer first (every few steps: a limit broken is told soon after)."""
+    monitor, top = loop.monitor, loop.config.layout.table_top_z
+    if reduce:
+        monitor.flush()
+    if monitor.arm_arm_contacts:
+        return f"arm-arm contact at t = {loop.data.time:.3f} s"
+    if monitor.speed_ratio > 1.0:
+        return f"a joint moved at {monitor.speed_ratio:.2f} of its velocity limit"
+    if monitor.torque_ratio > 1.0:
+        return f"a joint demanded {monitor.torque_ratio:.2f} of its torque limit"
+    for slot in range(loop.spawner.next_slot):  # every brick set on the spot so far
+        z = loop.data.qpos[loop.handles.brick_qpos[slot] + 2]
+        if z < top - OFF_TABLE or not math.isfinite(z):
+            return f"a brick (magazine slot {slot}) left the table"
+    return None
+
+
+def episode_info(env: Any, failure: str | None, success: bool | None) -> dict[str, Any]:
+    """A BuildEnv's info, the same keys after reset and every step; `result` (result.json's
+    document) once the episode has ended, empty before (a dict either way: a vector env
+    gathers infos by their type)."""
+    loop = env.loop
+    result: dict[str, Any] = {}
+    if env.ended:
+        loop.custody.slot_of.update(
+            {i: s for i, s in env.placing.placed.items() if i not in loop.custody.slot_of}
+        )
+        result = judge(loop.finish(failure, 0.0), loop.config).to_dict()
+    return {
+        "sim_time_s": float(loop.data.time),
+        "bricks_placed": env.placing.count,
+        "failure": failure,
+        "is_success": bool(success),
+        "command_lag": env.generator.peak_lag,
+        "seed": env.seed_of_episode,
+        "randomization": deepcopy(env.drawn),
+        "result": result,
+    }
