@@ -46,13 +46,15 @@ class Recipe:
     variation: str = "layout"
     cameras: tuple[str, ...] = ()
     image_size: int = 224  # record's default: a default recording's checkpoint evaluates as is
-    demos: int = 100
+    demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
     # where each hand goes: every action carries the brick's and its target's place (a
     # relative joint action carried a few mrad of it; docs/learning.md, "Waypoint actions")
     action_mode: str = "waypoint"
-    fps: int = 25  # the recording's rate, the policy's and the evaluation's
-    steps: int = 8000  # about 45 minutes on an idle core at 3 steps a second
+    # the recording's rate, the policy's and the evaluation's: an episode of about 210 steps,
+    # a chunk of 20 covering 2 s (docs/learning.md, "What the policy waits for")
+    fps: int = 10
+    steps: int = 10000  # about 50 minutes on an idle core at 3.5 steps a second
     learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
     batch_size: int = 32
     save_every: int = 1000
@@ -65,8 +67,8 @@ class Recipe:
     # ACT's default normalizes state, images and actions but not the environment state (the
     # bricks, goals and hands): a policy trained so ignored them (docs/benchmark.md)
     normalize_environment: bool = True
-    chunk: int = 25
-    action_steps: int = 10
+    chunk: int = 20
+    action_steps: int = 5
     episodes: int = 100
     max_steps: int | None = None
     curve_episodes: int = 0

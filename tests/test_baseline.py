@@ -62,8 +62,8 @@ def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, ca
     assert (recipe.action_mode, recipe.noise) == ("waypoint", 0.005)  # metres on each hand
     assert recipe.fps == baseline.Recipe.fps
     given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
-    _, recipe = baseline.parse([*given, "--fps", "10"])
-    assert (recipe.action_mode, recipe.noise, recipe.fps) == ("relative", 0.003, 10)
+    _, recipe = baseline.parse([*given, "--fps", "25"])
+    assert (recipe.action_mode, recipe.noise, recipe.fps) == ("relative", 0.003, 25)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--action-mode", "ee"])
     assert stopped.value.code == 2 and "invalid choice: 'ee'" in capsys.readouterr().err
@@ -87,7 +87,7 @@ def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, mon
 
     monkeypatch.setattr(pyramid_sim, "record", recorded)
     monkeypatch.setattr(pyramid_sim, "evaluate", evaluated)
-    recipe = baseline.Recipe(fps=10)
+    recipe = baseline.Recipe(fps=25)  # not the default
     baseline.record(tmp_path, recipe)
     baseline.score(tmp_path / "checkpoint", recipe, 2, None)
-    assert calls["record"]["fps"] == 10 and calls["evaluate"]["fps"] == 10
+    assert calls["record"]["fps"] == 25 and calls["evaluate"]["fps"] == 25
