@@ -16,6 +16,14 @@ from .primitives import Step, StepKind
 from .trajectory import Path, plan_path
 
 
+def grip_gaps(config: SimConfig) -> tuple[float, float]:
+    """The gap commands at which the pads press the brick with exactly the grip force, and at
+    which they just touch it, squeezing nothing."""
+    grip = config.gripper
+    squeeze = config.robot_description.squeeze_gap(config.brick.width, grip.force, grip.stiffness)
+    return squeeze, squeeze + grip.force / grip.stiffness
+
+
 @dataclass
 class ArmRunner:
     arm: Arm
@@ -53,10 +61,7 @@ class ArmRunner:
         Grip and release ramp between this and open, not closed: the fingers then meet and
         leave the brick slowly (a ramp to zero would cross the brick in its first few ticks
         and shove it, and open at full speed, which tips a brick just let go)."""
-        grip = self.config.gripper
-        return self.config.robot_description.squeeze_gap(
-            self.config.brick.width, grip.force, grip.stiffness
-        )
+        return grip_gaps(self.config)[0]
 
     @property
     def opening(self) -> bool:
@@ -66,8 +71,7 @@ class ArmRunner:
     @property
     def contact_gap(self) -> float:
         """The gap command at which the pads just touch the brick, squeezing nothing."""
-        grip = self.config.gripper
-        return self.squeeze_gap + grip.force / grip.stiffness
+        return grip_gaps(self.config)[1]
 
     def load(self, steps: list[Step]) -> None:
         self.steps = list(steps)

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...config import SimConfig
-from ...core.arm_runner import ArmRunner
+from ...core.arm_runner import ArmRunner, grip_gaps
 from ...core.primitives import StepKind
 
 
@@ -29,12 +29,10 @@ class GripperSwitch:
     """Each arm's finger command from its action's gap, left first."""
 
     def __init__(self, config: SimConfig, arms: int) -> None:
-        grip, robot = config.gripper, config.robot_description
-        self.open = robot.open_gap()
-        self.squeeze = robot.squeeze_gap(config.brick.width, grip.force, grip.stiffness)
-        self.contact = self.squeeze + grip.force / grip.stiffness
+        self.open = config.robot_description.open_gap()
+        self.squeeze, self.contact = grip_gaps(config)
         self.threshold = (self.contact + self.open) / 2
-        self.ramp_time = grip.close_time
+        self.ramp_time = config.gripper.close_time
         self.hands = [_Hand(self.open, False, self.open, self.ramp_time) for _ in range(arms)]
 
     def reset(self, gaps: list[float]) -> None:
