@@ -95,7 +95,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
                         help="DART: rad of joint actions, m of waypoints")  # fmt: skip
     parser.add_argument(
         "--action-mode",
-        choices=("joint", "relative", "waypoint"),
+        choices=("joint", "relative", "waypoint", "anchored"),
         default=None,
         help="the action's form (default the recipe's)",
     )

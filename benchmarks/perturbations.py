@@ -53,9 +53,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--structure", default="pyramid-even")
     parser.add_argument("--layers", type=whole("layers"), default=1)
     parser.add_argument("--raw", action="store_true", help="no motion generator")
-    parser.add_argument("--action-mode", choices=("joint", "waypoint"), default="joint",
+    parser.add_argument("--action-mode", choices=("joint", "waypoint", "anchored"), default="joint",
                         help="the expert's actions: joint targets (noise in rad) or each "
-                        "hand's waypoint (noise in m)")  # fmt: skip
+                        "hand's waypoint, in the world or anchored (noise in m)")  # fmt: skip
     parser.add_argument("--json", type=output_path("json path", folder=False), metavar="PATH")
     args = parser.parse_args(argv)
     if not 1 <= args.seeds <= 1000:
@@ -76,7 +76,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     print(f"{'perturbation':<20} {'built':>7}  failures")
     for kind, amount in ROWS:
-        metres = args.action_mode == "waypoint"
+        metres = args.action_mode in ("waypoint", "anchored")
         row = run_row(env, Perturbation(kind, amount, metres), seeds, limit)
         rows.append(row)
         print(f"{row['perturbation']:<20} {row['successes']:>3}/{row['episodes']:<3}  "

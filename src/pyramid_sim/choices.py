@@ -24,11 +24,12 @@ VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
 # What an environment's action is (learning/task/contract.py): joint targets, each joint's change
 # from where it is (relative), each hand's pose change (ee), or the pose each hand goes to
-# (waypoint); a recording writes all but ee. The last two are hand poses, turned into joints by
-# the IK.
-ACTION_MODES = ("joint", "relative", "ee", "waypoint")
-RECORD_ACTION_MODES = ("joint", "relative", "waypoint")
-HAND_ACTION_MODES = ("ee", "waypoint")
+# (waypoint), or that pose from the pick location or the arm's next target (anchored); a
+# recording writes all but ee. The last three are hand poses, turned into joints by the IK.
+ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored")
+RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored")
+HAND_ACTION_MODES = ("ee", "waypoint", "anchored")
+WAYPOINT_MODES = ("waypoint", "anchored")  # a waypoint's controller, hands and led labels
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin
@@ -54,6 +55,7 @@ __all__ = [
     "ACTION_MODES",
     "RECORD_ACTION_MODES",
     "HAND_ACTION_MODES",
+    "WAYPOINT_MODES",
     "FPS_CHOICES",
     "ENV_ID",
     "LEROBOT_ENV_ID",

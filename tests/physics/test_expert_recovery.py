@@ -86,8 +86,31 @@ def test_the_goal_is_observed_and_moves_with_the_layout():
     names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
     state = environment_state(other)
     goal = ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
-    assert len(names) == len(state) and names[-12:-8] == goal
-    assert state[-12] == np.float32(other["goals"][1][0])
+    assert len(names) == len(state) and names[-20:-16] == goal
+    assert state[-20] == np.float32(other["goals"][1][0])
+    env.close()
+
+
+def test_each_arms_next_target_is_observed_and_moves_on_once_its_brick_is_placed():
+    """The build order and which arm places which brick are the task's: the observation says
+    which goal each arm works towards, and the next one once a brick rests on it."""
+    env = gymnasium.make(ENV, structure="pyramid-even", layers=2, variation="layout").unwrapped
+    obs, _ = env.reset(seed=4)
+    orders = {arm: sorted(env.plan.arm_order(arm)) for arm in ("left", "right")}
+    np.testing.assert_array_equal(
+        obs["next"], obs["goals"][[orders["left"][0], orders["right"][0]]]
+    )
+    names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
+    at = names.index("right_next.x")
+    assert environment_state(obs)[at] == np.float32(obs["goals"][orders["right"][0]][0])
+    while not env.placing.placed:
+        obs, *_, truncated, info = env.step(env.expert_action())
+        assert not truncated and info["failure"] is None
+    (first,) = env.placing.placed
+    arm = next(a for a, order in orders.items() if first in order)
+    row = ("left", "right").index(arm)
+    assert first == orders[arm][0]
+    np.testing.assert_array_equal(obs["next"][row], obs["goals"][orders[arm][1]])
     env.close()
 
 

@@ -45,7 +45,7 @@ class PyramidSimEnv(EnvConfig):
     cameras: tuple[str, ...] = RECORD_CAMERAS  # as `record --cameras`
     observation_height: int = RECORD_IMAGE_SIZE[0]
     observation_width: int = RECORD_IMAGE_SIZE[1]
-    action_mode: str = "joint"  # as `record --action-mode`: joint, relative or waypoint
+    action_mode: str = "joint"  # as `record --action-mode`: joint, relative, waypoint, anchored
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 
@@ -53,8 +53,9 @@ class PyramidSimEnv(EnvConfig):
         bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
         # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
         motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
-        # a waypoint is each hand's x, y, z, yaw and gap
-        actions = 5 * len(ARMS) if self.action_mode == "waypoint" else motors
+        # a waypoint is each hand's x, y, z, yaw and gap; an anchored one its anchor too
+        hand = {"waypoint": 5, "anchored": 6}.get(self.action_mode)
+        actions = hand * len(ARMS) if hand else motors
         self.features = {
             ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(actions,)),
             "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),

@@ -40,7 +40,7 @@ def image_size(text: str) -> tuple[int, int]:
 
 
 def noise(text: str) -> float:
-    """DART's noise (rad, or m in the waypoint mode), refused here when out of range (before
+    """DART's noise (rad, or m in the waypoint and anchored modes), refused here when out of range (before
     anything is imported)."""
     value = number("noise")(text)
     if not NOISE.low <= value <= NOISE.high:
@@ -90,7 +90,7 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         type=noise,
         default=0.0,
         metavar="SCALE",
-        help="DART: each joint's executed target (rad), or in the waypoint mode "
+        help="DART: each joint's executed target (rad), or in the waypoint and anchored modes "
         "each hand's x, y and z (m), off the expert's by an offset drawn every second from "
         f"N(0, SCALE), the expert's correction kept as the label; {NOISE.text} (default 0)",
     )

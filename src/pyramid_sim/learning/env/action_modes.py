@@ -1,5 +1,5 @@
 """What each action mode needs beside the joint modes' parts: the hand modes' controller (the
-`ee` mode's pose changes or the `waypoint` mode's poses, through the IK) and how lerobot
+`ee` mode's pose changes or the `waypoint` and `anchored` modes' poses, through the IK) and how lerobot
 records their actions, and which of an action's entries move an arm."""
 
 from __future__ import annotations
@@ -9,11 +9,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 from gymnasium import spaces
 
-from ...choices import HAND_ACTION_MODES
+from ...choices import HAND_ACTION_MODES, WAYPOINT_MODES
 from ...config import SimConfig
 from ..task.layout import Layout
 from ..task.lerobot_units import LerobotUnits, own_units
 from ..task.spaces import joint_space
+from .anchored_actions import anchored_names, anchored_space
 from .ee_control import EndEffectorControl, end_effector
 from .relative_actions import relative_space
 from .waypoint_control import WaypointControl, waypoints
@@ -28,10 +29,12 @@ def action_parts(
     """The hands' controller for `action_mode` (an `ee` one serves the joint modes' expert
     too), the units lerobot records its actions in (the joint command's `units`, or a hand's
     pose) and the action space."""
-    if action_mode == "waypoint":
+    if action_mode in WAYPOINT_MODES:
         control: EndEffectorControl | WaypointControl = waypoints(config, layout, steps)
     else:
         control = end_effector(config, layout, steps)
+    if action_mode == "anchored":
+        return control, own_units(anchored_names(), units.robot_type), anchored_space(control.space)
     if action_mode in HAND_ACTION_MODES:
         return control, own_units(control.names, units.robot_type), control.space
     space = relative_space(layout) if action_mode == "relative" else joint_space(layout)
@@ -43,5 +46,6 @@ def moved_entries(env: BuildEnv) -> np.ndarray:
     joints, or in the hand modes each hand's x, y and z (what DART's noise and the
     perturbations offset)."""
     if env.action_mode in HAND_ACTION_MODES:
-        return np.array([k % 5 < 3 for k in range(len(env.ee.names))])
+        moved = ("x", "y", "z", "dx", "dy", "dz")
+        return np.array([name.split("/")[-1] in moved for name in env.action_units.names])
     return env.layout.joints

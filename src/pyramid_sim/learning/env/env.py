@@ -3,8 +3,9 @@
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
 targets and finger gaps (`layout.Layout`), ramped across the control and physics steps it
 spans (`action_mode="relative"`: each joint's change from where it is; `"ee"`: each arm's
-tool-pose change; `"waypoint"`: the tool pose each arm goes to). The environment feeds bricks to the spawn spot, and judges placements and
-failures from what happens, whoever drives it;
+tool-pose change; `"waypoint"`: the tool pose each arm goes to; `"anchored"`: that pose
+from the pick location or the arm's next target). The environment feeds bricks to the spawn
+spot, and judges placements and failures from what happens, whoever drives it;
 `ExpertPolicy` (`expert_action()`) is the scripted builder (scheduler, primitives, mink IK)
 as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
 structure stands, and at `full` the physical and visual randomization) from its seed: `reset(
@@ -33,14 +34,16 @@ from ...physics.stops import no_motion_reason
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
+from ..task.anchors import anchor_poses
 from ..task.contract import check_modes, check_reset_options, require_live_episode
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_failure, episode_info
-from ..task.spaces import checked_action, goals, observation_space, pick, renderer
+from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
 from . import relative_actions as rel
 from .action_modes import action_parts
+from .anchored_actions import hand_action, waypoint_action
 from .expert import ExpertPolicy
 from .target_spline import spline_ramp
 
@@ -131,6 +134,7 @@ class BuildEnv(gymnasium.Env):
         loop.feed_spot()  # the first brick on the spot before the first observation
         self.placing = PlacementWatch(loop)
         self.goals = goals(self.plan)  # the targets' poses, build order
+        self.anchors = anchor_poses(pick(self.plan), next_of(self.plan, self.goals, ()))
         held = loop.data.ctrl[loop.handles.ctrl_index].copy()
         self._command = (held, held)  # the last target, and where the ramp left the command
         self.generator.reset(held)
@@ -158,8 +162,9 @@ class BuildEnv(gymnasium.Env):
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         require_live_episode(self._reset_needed, self.ended)
-        names = self.ee.names if self.action_mode in HAND_ACTION_MODES else self.layout.names
-        target = checked_action(action, self._low, self._high, names)
+        names = self.action_units.names if self.action_mode in HAND_ACTION_MODES else None
+        target = checked_action(action, self._low, self._high, names or self.layout.names)
+        target = waypoint_action(self.action_mode, target, self.anchors)
         if self.action_mode == "relative":
             target = rel.absolute(target, self.measured_state(), self.layout)
         self.steps_taken += 1
@@ -210,7 +215,7 @@ class BuildEnv(gymnasium.Env):
         """The command that keeps both arms and hands as they are commanded now (in the hand
         modes, the action that does)."""
         if self.action_mode in HAND_ACTION_MODES:
-            return self.ee.hold(self._loop).astype(np.float32)
+            return hand_action(self.action_mode, self.ee.hold(self._loop), self.anchors)
         loop = self._loop
         held = loop.data.ctrl[loop.handles.ctrl_index]
         if self.action_mode == "relative":
@@ -222,16 +227,9 @@ class BuildEnv(gymnasium.Env):
         return lay.state(self._loop.data, self._loop.handles, self._state).copy()
 
     def _observe(self) -> dict[str, Any]:
-        loop = self._loop
-        observed: dict[str, Any] = {
-            "state": self.measured_state(),
-            "bricks": loop.data.qpos[self._brick_q],
-            "pick": pick(self.plan),
-            "goals": self.goals.copy(),
-            "tools": lay.tools(loop.data, loop.handles),
-        }
-        if self.cameras:
-            observed["images"] = self.images(self.cameras)
+        observed = observe(self)
+        # the frames of the next anchored action: what the policy sees now
+        self.anchors = anchor_poses(observed["pick"], observed["next"])
         return observed
 
     def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
@@ -250,6 +248,22 @@ class BuildEnv(gymnasium.Env):
     def loop(self) -> BuildLoop:
         """The build this episode runs (its parts, its expert's state)."""
         return self._loop
+
+
+def observe(env: BuildEnv) -> dict[str, Any]:
+    """What a policy sees now: the entries of the environment's observation space."""
+    loop = env.loop
+    observed: dict[str, Any] = {
+        "state": env.measured_state(),
+        "bricks": loop.data.qpos[env._brick_q],
+        "pick": pick(env.plan),
+        "goals": env.goals.copy(),
+        "next": next_of(env.plan, env.goals, env.placing.placed),
+        "tools": lay.tools(loop.data, loop.handles),
+    }
+    if env.cameras:
+        observed["images"] = env.images(env.cameras)
+    return observed
 
 
 def run_control_steps(

@@ -14,6 +14,7 @@ import numpy as np
 
 from ...choices import HAND_ACTION_MODES
 from ...physics.tool_feedback import close_loop, take_over
+from .anchored_actions import hand_action
 from .relative_actions import led, relative
 
 if TYPE_CHECKING:
@@ -89,4 +90,4 @@ class ExpertPolicy:
             self._done = not moving
         if not moving and env.action_mode == "ee":  # a waypoint stays where the build ended
             return env.ee.hold(loop).astype(np.float32)
-        return env.ee.expert(loop).astype(np.float32)
+        return hand_action(env.action_mode, env.ee.expert(loop), env.anchors)

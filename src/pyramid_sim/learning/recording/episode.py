@@ -5,12 +5,15 @@ build never sits in memory)."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import partial
 from typing import Any
 
 import numpy as np
 
+from ...choices import WAYPOINT_MODES
 from ..env.action_modes import moved_entries
+from ..env.anchored_actions import hand_action, waypoint_action
 from ..env.env import BuildEnv
 from ..task.spaces import environment_state
 from .lead_labels import LeadLabels
@@ -130,6 +133,7 @@ def expert_episode(
     frames = 0
     while True:
         action = env.expert_action()
+        anchors = env.anchors  # an anchored action's frames at this step
         primitive, brick = _doing(env)  # what the expert's action is for
         state = obs["state"].astype(np.float32)
         environment = environment_state(obs)
@@ -149,8 +153,10 @@ def expert_episode(
                 primitive,
                 brick,
             )  # fmt: skip
-        if env.action_mode == "waypoint":
-            led(frame, hands)
+        if env.action_mode in WAYPOINT_MODES:  # led as waypoints, given back in the mode's form
+            waypoint = waypoint_action(env.action_mode, action, anchors)
+            led(replace(frame, action=waypoint.astype(np.float32)), hands,
+                partial(hand_action, env.action_mode, anchors=anchors))  # fmt: skip
         else:
             on_frame(frame)
         frames += 1

@@ -6,7 +6,8 @@ not that clock: taught that label it learns a move's end as a place to stand. So
 hand is within `ARRIVED` of its waypoint is labelled with the next waypoint the builder gives,
 when that comes within `LEAD`: one more than `ARRIVED` from it (the closed loop's aim drifts a
 little every frame). A grip or a release on the way keeps the label: the hand stands still
-while the fingers work. The frames go to the sink in order, `LEAD` later.
+while the fingers work. The frames go to the sink in order, `LEAD` later, each label given
+back in its action mode's form (an anchored one from the frames its own step saw).
 """
 
 from __future__ import annotations
@@ -34,11 +35,17 @@ class LeadLabels:
         self.window = max(1, round(LEAD * fps))
         self.on_frame = on_frame
         self.still = still
-        self.pending: deque[tuple[Frame, np.ndarray]] = deque()
+        self.pending: deque[tuple[Frame, np.ndarray, Callable | None]] = deque()
 
-    def __call__(self, frame: Frame, hands: np.ndarray) -> None:
-        """Take a frame and where each hand's tool centre (x, y, z) was at it."""
-        self.pending.append((frame, np.asarray(hands, dtype=np.float64)))
+    def __call__(
+        self,
+        frame: Frame,
+        hands: np.ndarray,
+        form: Callable[[np.ndarray], np.ndarray] | None = None,
+    ) -> None:
+        """Take a frame (its action a waypoint), where each hand's tool centre (x, y, z) was
+        at it, and what turns its waypoint label into its action mode's (none: as it is)."""
+        self.pending.append((frame, np.asarray(hands, dtype=np.float64), form))
         if len(self.pending) > self.window:
             self._emit()
         if frame.done:
@@ -46,7 +53,7 @@ class LeadLabels:
                 self._emit()
 
     def _emit(self) -> None:
-        frame, hands = self.pending.popleft()
+        frame, hands, form = self.pending.popleft()
         action = frame.action.copy()
         for k, hand in enumerate(hands):
             if frame.primitive[k] in self.still:
@@ -55,10 +62,10 @@ class LeadLabels:
             label = frame.action[span]
             if np.linalg.norm(hand - label[:3]) >= ARRIVED:
                 continue
-            for later, _ in self.pending:
+            for later, _, _ in self.pending:
                 if later.primitive[k] in self.still:
                     break
                 if np.linalg.norm(later.action[span][:3] - label[:3]) > ARRIVED:
                     action[span] = later.action[span]
                     break
-        self.on_frame(replace(frame, action=action))
+        self.on_frame(replace(frame, action=action if form is None else form(action)))

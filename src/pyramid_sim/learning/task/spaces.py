@@ -3,6 +3,7 @@ joint action spaces, the check of an action, and the headless renderer."""
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 import numpy as np
@@ -11,6 +12,7 @@ from gymnasium import spaces
 from ...choices import ARMS
 from ...errors import ActionError
 from . import layout as lay
+from .anchors import next_targets
 from .observation_names import BRICK_FIELDS, GOAL_FIELDS, TOOL_FIELDS
 
 
@@ -19,14 +21,16 @@ def observation_space(
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
     rests when fed to the spawn spot), the goals (every target's pose,
-    in build order: where the bricks must go), the tools (each hand's tool pose, left first:
-    where the hands are, without a learner having to learn the arm's kinematics), and each
-    camera's image."""
+    in build order: where the bricks must go), each arm's next target (left first: which of
+    the goals it works towards, anchors.next_targets), the tools (each hand's tool pose, left
+    first: where the hands are, without a learner having to learn the arm's kinematics), and
+    each camera's image."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
         "pick": spaces.Box(-np.inf, np.inf, (len(GOAL_FIELDS),), dtype=np.float64),
         "goals": spaces.Box(-np.inf, np.inf, (targets, len(GOAL_FIELDS)), dtype=np.float64),
+        "next": spaces.Box(-np.inf, np.inf, (len(ARMS), len(GOAL_FIELDS)), dtype=np.float64),
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
     }
     if cameras:
@@ -38,9 +42,9 @@ def observation_space(
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
-    """An observation's bricks, pick location, goals and tools as one float32 vector, in the
-    order of `observation_names.environment_names`."""
-    parts = [observation[k].ravel() for k in ("bricks", "pick", "goals", "tools")]
+    """An observation's bricks, pick location, goals, next targets and tools as one float32
+    vector, in the order of `observation_names.environment_names`."""
+    parts = [observation[k].ravel() for k in ("bricks", "pick", "goals", "next", "tools")]
     return np.concatenate(parts).astype(np.float32)
 
 
@@ -53,6 +57,12 @@ def goals(plan: Any) -> np.ndarray:
     """Every target's pose (`GOAL_FIELDS`) in build order, from a plan."""
     ordered = sorted(plan.bricks, key=lambda b: b.index)
     return np.array([[*b.target.pose.position, b.target.pose.yaw] for b in ordered])
+
+
+def next_of(plan: Any, goals: np.ndarray, placed: Collection[int]) -> np.ndarray:
+    """Each arm's next target (`GOAL_FIELDS`), left first, with `placed` (build-order indices)
+    holding a brick: `anchors.next_targets` of the plan's arms."""
+    return next_targets([sorted(plan.arm_order(arm)) for arm in ARMS], goals, placed)
 
 
 def joint_space(layout: lay.Layout) -> spaces.Box:
