@@ -86,8 +86,9 @@ def test_the_goal_is_observed_and_moves_with_the_layout():
     names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
     state = environment_state(other)
     goal = ("goal1.x", "goal1.y", "goal1.z", "goal1.yaw")
-    assert len(names) == len(state) and names[-20:-16] == goal
-    assert state[-20] == np.float32(other["goals"][1][0])
+    at = names.index("goal1.x")
+    assert len(names) == len(state) and names[at : at + 4] == goal
+    assert state[at] == np.float32(other["goals"][1][0])
     env.close()
 
 
@@ -114,6 +115,59 @@ def test_each_arms_next_target_is_observed_and_moves_on_once_its_brick_is_placed
     env.close()
 
 
+def _pads_on_one_brick(env, arm):
+    """Whether both of the arm's pads touch the same brick, from MuJoCo's contacts."""
+    model, data = env.loop.model, env.loop.data
+    pads = [model.geom(n).id for n in env.config.robot_description.arms[arm].pads]
+    bricks = {int(b) for b in env.loop.handles.brick_body}
+    touched = [set(), set()]
+    for con in data.contact[: data.ncon] if data.ncon else []:
+        for k, pad in enumerate(pads):
+            if pad in (con.geom1, con.geom2):
+                other = con.geom2 if con.geom1 == pad else con.geom1
+                if int(model.geom_bodyid[other]) in bricks:
+                    touched[k].add(int(model.geom_bodyid[other]))
+    return bool(touched[0] & touched[1])
+
+
+def test_a_brick_held_and_a_goal_filled_are_observed_as_they_happen():
+    """`held` is a real gripper's object detection (both pads on one brick); `placed` the
+    goals that hold a brick at rest: what tells a policy which part of the task it is in."""
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    obs, _ = env.reset(seed=5)
+    names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
+    seen = {"held": set(), "placed": set()}
+    while True:
+        for k, arm in enumerate(("left", "right")):
+            assert obs["held"][k] == float(_pads_on_one_brick(env, arm))
+            seen["held"].add((arm, obs["held"][k]))
+        expected = [float(i in env.placing.placed) for i in range(len(obs["goals"]))]
+        np.testing.assert_array_equal(obs["placed"], expected)
+        seen["placed"].add(tuple(expected))
+        state = environment_state(obs)
+        assert state[names.index("right_held")] == np.float32(obs["held"][1])
+        assert state[names.index("goal0.placed")] == np.float32(obs["placed"][0])
+        obs, _, terminated, truncated, info = env.step(env.expert_action())
+        if terminated or truncated:
+            break
+    assert info["is_success"] and obs["placed"].tolist() == [1.0, 1.0]
+    assert seen["held"] == {(a, v) for a in ("left", "right") for v in (0.0, 1.0)}
+    assert len(seen["placed"]) >= 2  # some goal filled before the end
+    env.close()
+
+
+def test_a_hand_closed_on_nothing_holds_nothing():
+    env = gymnasium.make(ENV, **TASK).unwrapped
+    env.reset(seed=5)
+    action = env.held_command()
+    action[env.layout.names.index("left/gripper")] = 0.0
+    for _ in range(30):
+        obs, *_ = env.step(action)
+    assert env.measured_state()[env.layout.names.index("left/gripper")] < 0.01  # closed
+    assert obs["held"].tolist() == [0.0, 0.0]
+    env.close()
+
+
 def test_the_hands_tool_poses_are_observed_where_the_tool_sites_are():
     """Each hand's tool centre and yaw, as a real arm's forward kinematics reports it: a
     learner need not learn the arm's kinematics to relate its hand to a brick."""
@@ -131,11 +185,12 @@ def test_the_hands_tool_poses_are_observed_where_the_tool_sites_are():
     )
     assert np.linalg.norm(obs["tools"][0, :2] - spot) < start / 2
     names = pyramid_sim.environment_names(len(obs["bricks"]), len(obs["goals"]))
-    assert names[-8:] == tuple(
+    at = names.index("left_tool.x")
+    assert names[at : at + 8] == tuple(
         f"{a}_tool.{f}" for a in ("left", "right") for f in "x y z yaw".split()
     )
     np.testing.assert_array_equal(
-        environment_state(obs)[-8:], obs["tools"].ravel().astype(np.float32)
+        environment_state(obs)[at : at + 8], obs["tools"].ravel().astype(np.float32)
     )
     env.close()
 

@@ -1,13 +1,10 @@
 """The build as a Gymnasium environment: one episode is one build of a structure by two arms.
 
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
-targets and finger gaps (`layout.Layout`), ramped across the control and physics steps it
-spans (`action_mode="relative"`: each joint's change from where it is; `"ee"`: each arm's
-tool-pose change; `"waypoint"`: the tool pose each arm goes to; `"anchored"`: that pose
-from the pick location or the arm's next target). The environment feeds bricks to the spawn
-spot, and judges placements and failures from what happens, whoever drives it;
-`ExpertPolicy` (`expert_action()`) is the scripted builder (scheduler, primitives, mink IK)
-as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
+targets and finger gaps (`layout.Layout`), or as `action_mode` says (docs/learning.md). The
+environment feeds bricks to the spawn spot, and judges placements and failures from what
+happens, whoever drives it; `ExpertPolicy` (`expert_action()`) is the scripted builder
+(scheduler, primitives, mink IK) as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
 structure stands, and at `full` the physical and visual randomization) from its seed: `reset(
 seed=s)` is the same episode bit for bit, `reset()` the next one of the environment's stream.
 
@@ -38,6 +35,7 @@ from ..task.anchors import anchor_poses
 from ..task.contract import check_modes, check_reset_options, require_live_episode
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
+from ..task.hold_sense import HoldSense
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_failure, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
@@ -117,6 +115,7 @@ class BuildEnv(gymnasium.Env):
         )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
+        self.holds = HoldSense(self._loop.model, self._loop.handles, robot)
         self._expert = ExpertPolicy(self)
         self._start_episode()
 
@@ -258,8 +257,10 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "bricks": loop.data.qpos[env._brick_q],
         "pick": pick(env.plan),
         "goals": env.goals.copy(),
+        "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
         "next": next_of(env.plan, env.goals, env.placing.placed),
         "tools": lay.tools(loop.data, loop.handles),
+        "held": env.holds(loop.data),
     }
     if env.cameras:
         observed["images"] = env.images(env.cameras)

@@ -15,12 +15,15 @@ def environment_names(bricks: int, targets: int) -> tuple[str, ...]:
     `environment_state`: every magazine brick's pose, the pick location's (where the next
     brick is fed: the spot moves from one episode to the next, and a brick's own entries span
     the whole table over an episode, so its few centimetres there are lost in them), every
-    target's in build order, each arm's next target (left first), then each hand's tool pose,
-    left first (as a real arm reports it: its forward kinematics)."""
+    target's in build order, whether each holds a brick, each arm's next target (left first),
+    each hand's tool pose, left first (as a real arm reports it: its forward kinematics), and
+    whether each hand holds a brick (as a real gripper reports it)."""
     return (
         tuple(f"brick{i}.{f}" for i in range(bricks) for f in BRICK_FIELDS)
         + tuple(f"pick.{f}" for f in GOAL_FIELDS)
         + tuple(f"goal{i}.{f}" for i in range(targets) for f in GOAL_FIELDS)
+        + tuple(f"goal{i}.placed" for i in range(targets))
         + tuple(f"{arm}_next.{f}" for arm in ARMS for f in GOAL_FIELDS)
         + tuple(f"{arm}_tool.{f}" for arm in ARMS for f in TOOL_FIELDS)
+        + tuple(f"{arm}_held" for arm in ARMS)
     )

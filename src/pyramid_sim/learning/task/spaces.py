@@ -21,17 +21,20 @@ def observation_space(
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
     rests when fed to the spawn spot), the goals (every target's pose,
-    in build order: where the bricks must go), each arm's next target (left first: which of
-    the goals it works towards, anchors.next_targets), the tools (each hand's tool pose, left
-    first: where the hands are, without a learner having to learn the arm's kinematics), and
-    each camera's image."""
+    in build order: where the bricks must go), which goals hold a brick (1.0 or 0.0, build
+    order), each arm's next target (left first: which of the goals it works towards,
+    anchors.next_targets), the tools (each hand's tool pose, left first: where the hands are,
+    without a learner having to learn the arm's kinematics), whether each hand holds a brick
+    (hold_sense.py), and each camera's image."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
         "pick": spaces.Box(-np.inf, np.inf, (len(GOAL_FIELDS),), dtype=np.float64),
         "goals": spaces.Box(-np.inf, np.inf, (targets, len(GOAL_FIELDS)), dtype=np.float64),
+        "placed": spaces.Box(0.0, 1.0, (targets,), dtype=np.float64),
         "next": spaces.Box(-np.inf, np.inf, (len(ARMS), len(GOAL_FIELDS)), dtype=np.float64),
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
+        "held": spaces.Box(0.0, 1.0, (len(ARMS),), dtype=np.float64),
     }
     if cameras:
         height, width = image_size
@@ -42,9 +45,10 @@ def observation_space(
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
-    """An observation's bricks, pick location, goals, next targets and tools as one float32
-    vector, in the order of `observation_names.environment_names`."""
-    parts = [observation[k].ravel() for k in ("bricks", "pick", "goals", "next", "tools")]
+    """An observation's entries beside the state and images as one float32 vector, in the
+    order of `observation_names.environment_names`."""
+    keys = ("bricks", "pick", "goals", "placed", "next", "tools", "held")
+    parts = [observation[k].ravel() for k in keys]
     return np.concatenate(parts).astype(np.float32)
 
 
