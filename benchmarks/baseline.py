@@ -48,9 +48,9 @@ class Recipe:
     image_size: int = 224  # record's default: a default recording's checkpoint evaluates as is
     demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
-    # where each hand goes: every action carries the brick's and its target's place (a
-    # relative joint action carried a few mrad of it; docs/learning.md, "Waypoint actions")
-    action_mode: str = "waypoint"
+    # where each hand goes, from the pick location, its clear pose or its next target: the
+    # place is copied from the observation, not regressed (docs/learning.md, "Anchored actions")
+    action_mode: str = "anchored"
     # the recording's rate, the policy's and the evaluation's: an episode of about 210 steps,
     # a chunk of 20 covering 2 s (docs/learning.md, "What the policy waits for")
     fps: int = 10

@@ -4,14 +4,17 @@ import numpy as np
 import pytest
 
 from pyramid_sim.learning.task.anchors import (
+    DEAD,
     RADIUS,
     anchor_poses,
+    frame_at,
     next_targets,
     to_anchored,
     to_world,
 )
 
 PICK = np.array([0.48, 0.01, 0.11, 1.37])
+CLEARS = np.array([[0.3, 0.62, 0.4, 0.0], [0.3, -0.62, 0.4, 0.0]])
 GOALS = np.array([[0.75, 0.02, 0.11, -0.1], [0.74, -0.09, 0.11, -0.1], [0.745, -0.03, 0.17, -0.1]])
 
 
@@ -25,19 +28,20 @@ def test_an_arms_next_target_is_its_first_unplaced_then_its_last_and_none_for_an
 
 
 def _anchors():
-    return anchor_poses(PICK, next_targets([[0], [1]], GOALS, ()))
+    return anchor_poses(PICK, CLEARS, next_targets([[0], [1]], GOALS, ()))
 
 
-def test_a_waypoint_over_the_pick_or_the_target_is_given_from_it_and_elsewhere_from_the_table():
+def test_a_waypoint_over_the_pick_or_the_target_is_given_from_it_and_elsewhere_from_clear():
     hover_pick = [*(PICK[:3] + [0.002, -0.001, 0.1]), PICK[3] + 0.05, 0.08]
     hover_goal = [*(GOALS[1][:3] + [0.0, 0.0, 0.1]), GOALS[1][3], 0.0]
     action = to_anchored(np.array(hover_pick + hover_goal), _anchors())
-    np.testing.assert_allclose(action[:6], [1, 0.002, -0.001, 0.1, 0.05, 0.08], atol=1e-6)
+    np.testing.assert_allclose(action[:6], [0, 0.002, -0.001, 0.1, 0.05, 0.08], atol=1e-6)
     np.testing.assert_allclose(action[6:], [2, 0, 0, 0.1, 0, 0], atol=1e-6)
-    clear = [0.3, 0.62, 0.4, 0.2, 0.08]
-    far = to_anchored(np.array(clear + [GOALS[1][0] + RADIUS * 1.01, *GOALS[1][1:], 0]), _anchors())
-    np.testing.assert_allclose(far[:6], [0, *clear], atol=1e-6)  # the table: as in the world
-    assert far[6] == 0  # just outside the radius of the arm's target
+    near_clear = [0.31, 0.6, 0.4, 0.2, 0.08]
+    far = [GOALS[1][0] + RADIUS * 1.01, *GOALS[1][1:], 0]
+    action = to_anchored(np.array(near_clear + far), _anchors())
+    np.testing.assert_allclose(action[:6], [1, 0.01, -0.02, 0.0, 0.2, 0.08], atol=1e-6)
+    assert action[6] == 1  # just outside the radius of the arm's target: from its clear pose
 
 
 @pytest.mark.parametrize("seed", range(5))
@@ -49,15 +53,19 @@ def test_an_anchored_action_turns_back_into_the_waypoint_it_was_made_from(seed):
          [*rng.uniform(0.2, 0.8, 3), rng.uniform(-3, 3), 0.0]]
     )  # fmt: skip
     back = to_world(to_anchored(world, anchors), anchors)
-    np.testing.assert_allclose(
-        back[[0, 1, 2, 4, 5, 6, 7, 9]], world[[0, 1, 2, 4, 5, 6, 7, 9]], atol=1e-6
-    )
+    keep = [0, 1, 2, 4, 5, 6, 7, 9]
+    np.testing.assert_allclose(back[keep], world[keep], atol=1e-6)
     for yaw in (3, 8):  # the same heading, a turn apart at most
         assert abs(np.remainder(back[yaw] - world[yaw] + np.pi, 2 * np.pi) - np.pi) < 1e-6
 
 
-def test_an_anchor_between_frames_is_rounded_and_one_out_of_range_clipped():
-    anchors = _anchors()
-    for anchor, frame in ((0.4, 0), (0.6, 1), (1.7, 2), (7.0, 2), (-3.0, 0)):
-        world = to_world(np.array([anchor, 0, 0, 0.1, 0, 0.0] * 2), anchors)
-        np.testing.assert_allclose(world[:3], anchors[0, frame, :3] + [0, 0, 0.1])
+def test_an_anchor_near_an_integer_is_that_frame_and_between_two_slides_from_one_to_the_next():
+    frames = _anchors()[0]
+    for anchor, frame in ((0.1, 0), (0.9, 1), (1.0 + DEAD, 1), (1.9, 2), (7.0, 2), (-3.0, 0)):
+        np.testing.assert_allclose(frame_at(anchor, frames), frames[frame])
+    np.testing.assert_allclose(frame_at(1.5, frames), (frames[1] + frames[2]) / 2)
+    np.testing.assert_allclose(frame_at(0.5, frames), (frames[0] + frames[1]) / 2)
+    quarter = frame_at(DEAD + 0.25 * (1 - 2 * DEAD), frames)
+    np.testing.assert_allclose(quarter, 0.75 * frames[0] + 0.25 * frames[1])
+    world = to_world(np.array([1.5, 0, 0, 0.1, 0, 0.0] * 2), _anchors())
+    np.testing.assert_allclose(world[:3], (frames[1][:3] + frames[2][:3]) / 2 + [0, 0, 0.1])

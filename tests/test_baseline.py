@@ -59,7 +59,7 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
 
 def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, capsys):
     _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
-    assert (recipe.action_mode, recipe.noise) == ("waypoint", 0.005)  # metres on each hand
+    assert (recipe.action_mode, recipe.noise) == ("anchored", 0.005)  # metres on each hand
     assert recipe.fps == baseline.Recipe.fps
     given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
     _, recipe = baseline.parse([*given, "--fps", "25"])

@@ -265,9 +265,8 @@ def test_an_expert_episode_is_kept_at_the_datasets_rate():
     assert len(frames) == pytest.approx(steps / 4, abs=1)  # the last step may end early
     assert [f.done for f in frames].count(True) == 1 and frames[-1].done
     assert [f.success for f in frames].count(True) == 1 and frames[-1].success
-    assert frames[0].environment.shape == (
-        4 * 7 + 4 + 4 + 8,
-    )  # 1 brick, 3 spares, pick, goal, hands
+    # 1 brick, 3 spares, pick, goal, whether it is filled, each arm's next target, hands, holds
+    assert frames[0].environment.shape == (4 * 7 + 4 + 4 + 1 + 8 + 8 + 2,)
     assert sum(f.reward for f in frames) == 1.0
     assert frames[0].state.dtype == np.float32 and frames[0].action.shape == (16,)
     assert set(frames[0].images) == {"overview", "left_wrist"}

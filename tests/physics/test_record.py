@@ -52,13 +52,19 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     assert info["features"]["observation.state"]["shape"] == [16]
     # A state-only policy learns from where the bricks are; lerobot's sims carry next.success.
     environment = info["features"]["observation.environment_state"]
-    assert environment["shape"] == [4 * 7 + 4 + 4 + 8] and environment["names"][:2] == [
-        "brick0.x",
-        "brick0.y",
-    ]
+    # bricks, pick, goal, its fill, each arm's next target, hands, holds
+    assert environment["shape"] == [4 * 7 + 4 + 4 + 1 + 8 + 8 + 2]
+    assert environment["names"][:2] == ["brick0.x", "brick0.y"]
     assert environment["names"][28:32] == ["pick.x", "pick.y", "pick.z", "pick.yaw"]
-    assert environment["names"][-12:-8] == ["goal0.x", "goal0.y", "goal0.z", "goal0.yaw"]
-    assert environment["names"][-8:-4] == [
+    assert environment["names"][32:37] == [
+        "goal0.x",
+        "goal0.y",
+        "goal0.z",
+        "goal0.yaw",
+        "goal0.placed",
+    ]
+    assert environment["names"][-2:] == ["left_held", "right_held"]
+    assert environment["names"][-10:-6] == [
         "left_tool.x",
         "left_tool.y",
         "left_tool.z",

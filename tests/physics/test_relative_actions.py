@@ -110,7 +110,9 @@ def test_evaluate_scores_a_policy_in_its_action_mode(tmp_path):
     assert scored.success_rate == 1.0
     written = json.loads((tmp_path / "e/evaluation.json").read_text())
     assert written["task"]["action_mode"] == "relative" and written["successes"] == 1
-    with pytest.raises(pyramid_sim.ConfigError, match="accepted joint, relative or waypoint"):
+    with pytest.raises(
+        pyramid_sim.ConfigError, match="accepted joint, relative, waypoint or anchored"
+    ):
         pyramid_sim.record(tmp_path / "r", "pyramid-even", layers=1, cameras=(), action_mode="ee")
     assert not (tmp_path / "r").exists()
 

@@ -10,7 +10,9 @@ import math
 import numpy as np
 from gymnasium import spaces
 
+from ...core.primitives import clear_pose
 from ...physics import names as c
+from ...robots import RobotDescription
 from ..task.anchors import ANCHORS, FIELDS, to_anchored, to_world
 from .waypoint_control import REACH
 
@@ -24,6 +26,11 @@ def anchored_space(waypoint: spaces.Box) -> spaces.Box:
         low += [0.0, -REACH, -REACH, -REACH, -2 * math.pi, waypoint.low[gap]]
         high += [len(ANCHORS) - 1.0, REACH, REACH, REACH, 2 * math.pi, waypoint.high[gap]]
     return spaces.Box(np.array(low, np.float32), np.array(high, np.float32), dtype=np.float32)
+
+
+def clear_frames(robot: RobotDescription) -> np.ndarray:
+    """Each arm's collision-clear pose (x, y, z, yaw), left first: the anchored mode's frame 1."""
+    return np.array([[*p.position, p.yaw] for p in (clear_pose(a, robot) for a in c.ARMS)])
 
 
 def anchored_names() -> tuple[str, ...]:

@@ -41,7 +41,7 @@ from ..task.outcome import PlacementWatch, episode_failure, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
 from . import relative_actions as rel
 from .action_modes import action_parts
-from .anchored_actions import hand_action, waypoint_action
+from .anchored_actions import clear_frames, hand_action, waypoint_action
 from .expert import ExpertPolicy
 from .target_spline import spline_ramp
 
@@ -57,6 +57,7 @@ class BuildEnv(gymnasium.Env):
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
     _reset_needed = True  # Gymnasium's contract: reset before the first step
+    anchors = np.zeros((2, 3, 4))  # the anchored mode's frames, from each observation
 
     def __init__(
         self,
@@ -133,7 +134,6 @@ class BuildEnv(gymnasium.Env):
         loop.feed_spot()  # the first brick on the spot before the first observation
         self.placing = PlacementWatch(loop)
         self.goals = goals(self.plan)  # the targets' poses, build order
-        self.anchors = anchor_poses(pick(self.plan), next_of(self.plan, self.goals, ()))
         held = loop.data.ctrl[loop.handles.ctrl_index].copy()
         self._command = (held, held)  # the last target, and where the ramp left the command
         self.generator.reset(held)
@@ -228,7 +228,8 @@ class BuildEnv(gymnasium.Env):
     def _observe(self) -> dict[str, Any]:
         observed = observe(self)
         # the frames of the next anchored action: what the policy sees now
-        self.anchors = anchor_poses(observed["pick"], observed["next"])
+        clears = clear_frames(self.config.robot_description)
+        self.anchors = anchor_poses(observed["pick"], clears, observed["next"])
         return observed
 
     def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:

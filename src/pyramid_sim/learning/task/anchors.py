@@ -6,10 +6,16 @@ millimetres out of the tens of centimetres they move from one episode to the nex
 waypoint given as an offset from the pick location or from the arm's next target is nearly the
 same number in every episode (a hover is a fixed height above its anchor), so the place is
 copied from the observation by the environment, not regressed by the network. An arm's action
-is (anchor, x, y, z, yaw, gap): `anchor` names the frame (0 the table, 1 the pick location, 2
-the arm's next target; rounded), x, y, z the offset from its place (m, world axes), yaw the
-turn from its yaw (the table's is 0). The anchors are the step's observation's `pick` and
-`next`: what the policy saw when it chose the action.
+is (anchor, x, y, z, yaw, gap): `anchor` names the frame (0 the pick location, 1 the arm's
+collision-clear pose, 2 the arm's next target), x, y, z the offset from its place (m, world
+axes), yaw the turn from its yaw. The anchors are the step's observation's `pick` and `next`
+(and the robot's fixed clear pose): what the policy saw when it chose the action.
+
+The order is the task's: an arm goes from the pick to its clear pose and from there to its
+target and back, so every change of frame is to a neighbour, and an anchor between two
+integers (a regression unsure which part of the task it is in) is a point between the two
+frames, not a third frame: within `DEAD` of an integer the frame is that one exactly, between
+it slides linearly from one to the next.
 """
 
 from __future__ import annotations
@@ -19,9 +25,10 @@ from collections.abc import Collection, Sequence
 
 import numpy as np
 
-ANCHORS = ("table", "pick", "next")  # an action's `anchor`: 0, 1, 2
+ANCHORS = ("pick", "clear", "next")  # an action's `anchor`: 0, 1, 2
 FIELDS = ("anchor", "x", "y", "z", "yaw", "gripper")
 RADIUS = 0.03  # m across the table within which a waypoint is given from the pick or a target
+DEAD = 0.15  # of an anchor's unit around each integer that is that frame exactly
 
 
 def next_targets(
@@ -38,10 +45,19 @@ def next_targets(
     return np.array(rows, dtype=np.float64).reshape(len(orders), 4)
 
 
-def anchor_poses(pick: np.ndarray, nexts: np.ndarray) -> np.ndarray:
-    """Each arm's anchors (arms x 3 x 4: table, pick, next target), from an observation's
-    `pick` and `next`."""
-    return np.array([[np.zeros(4), np.asarray(pick), row] for row in np.asarray(nexts)])
+def anchor_poses(pick: np.ndarray, clears: np.ndarray, nexts: np.ndarray) -> np.ndarray:
+    """Each arm's anchors (arms x 3 x 4: pick location, clear pose, next target), from an
+    observation's `pick` and `next` and the arms' clear poses (x, y, z, yaw each)."""
+    return np.array([[np.asarray(pick), clear, row] for clear, row in zip(clears, nexts)])
+
+
+def frame_at(anchor: float, frames: np.ndarray) -> np.ndarray:
+    """The frame (x, y, z, yaw) an anchor value names: an integer's within `DEAD` of it, and
+    a linear slide between two neighbours' between them."""
+    value = float(np.clip(anchor, 0, len(ANCHORS) - 1))
+    low = min(int(value), len(ANCHORS) - 2)
+    share = float(np.clip((value - low - DEAD) / (1 - 2 * DEAD), 0.0, 1.0))
+    return (1 - share) * frames[low] + share * frames[low + 1]
 
 
 def to_world(action: np.ndarray, anchors: np.ndarray) -> np.ndarray:
@@ -49,21 +65,21 @@ def to_world(action: np.ndarray, anchors: np.ndarray) -> np.ndarray:
     world = []
     for k, frames in enumerate(anchors):
         anchor, x, y, z, yaw, gap = (float(v) for v in action[6 * k : 6 * k + 6])
-        base = frames[int(np.clip(round(anchor), 0, len(ANCHORS) - 1))]
+        base = frame_at(anchor, frames)
         world += [base[0] + x, base[1] + y, base[2] + z, base[3] + yaw, gap]
     return np.array(world)
 
 
 def to_anchored(world: np.ndarray, anchors: np.ndarray) -> np.ndarray:
     """The anchored action for a waypoint action (float32): each hand's waypoint from the
-    nearest of its pick location and next target within `RADIUS` across the table, else from
-    the table."""
+    nearer of its pick location and next target within `RADIUS` across the table, else from
+    its clear pose."""
     action = []
     for k, frames in enumerate(anchors):
         pose, gap = np.asarray(world[5 * k : 5 * k + 4], dtype=np.float64), world[5 * k + 4]
-        reach = np.hypot(*(frames[1:, :2] - pose[:2]).T)
-        anchor = 1 + int(np.argmin(reach)) if reach.min() < RADIUS else 0
+        reach = np.hypot(*(frames[[0, 2], :2] - pose[:2]).T)
+        anchor = (0, 2)[int(np.argmin(reach))] if reach.min() < RADIUS else 1
         offset = pose - frames[anchor]
-        offset[3] = math.remainder(offset[3], 2 * math.pi) if anchor else pose[3]
+        offset[3] = math.remainder(offset[3], 2 * math.pi)
         action += [anchor, *offset, gap]
     return np.array(action, dtype=np.float32)
