@@ -24,8 +24,8 @@ VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
 # What an environment's action is (learning/task/contract.py): joint targets, each joint's change
 # from where it is (relative), each hand's pose change (ee), or the pose each hand goes to
-# (waypoint), or that pose from the pick location or the arm's next target (anchored); a
-# recording writes all but ee. The last three are hand poses, turned into joints by the IK.
+# (waypoint), or that pose from the pick location, the arm's clear pose or its next target
+# (anchored); a recording writes all but ee. The last three are hand poses, turned into joints by the IK.
 ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored")
 RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored")
 HAND_ACTION_MODES = ("ee", "waypoint", "anchored")

@@ -48,8 +48,8 @@ def add_episode_args(
         help="the action: joint targets, relative (each joint's change from where it is: "
         "what a learner predicts most precisely)"
         + (", ee (each hand's pose change)" if "ee" in modes else "")
-        + ", waypoint (the pose each hand goes to), anchored (that pose from the pick location "
-        "or the arm's next target)" + " (default joint)",
+        + ", waypoint (the pose each hand goes to), anchored (that pose from the pick location, "
+        "the arm's clear pose or its next target) (default joint)",
     )
 
 

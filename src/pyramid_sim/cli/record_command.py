@@ -40,8 +40,8 @@ def image_size(text: str) -> tuple[int, int]:
 
 
 def noise(text: str) -> float:
-    """DART's noise (rad, or m in the waypoint and anchored modes), refused here when out of range (before
-    anything is imported)."""
+    """DART's noise (rad, or m in the waypoint and anchored modes), refused here when out of
+    range (before anything is imported)."""
     value = number("noise")(text)
     if not NOISE.low <= value <= NOISE.high:
         raise argparse.ArgumentTypeError(f"noise: {text!r} is out of range; accepted {NOISE.text}")

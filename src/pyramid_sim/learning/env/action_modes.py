@@ -1,6 +1,6 @@
 """What each action mode needs beside the joint modes' parts: the hand modes' controller (the
-`ee` mode's pose changes or the `waypoint` and `anchored` modes' poses, through the IK) and how lerobot
-records their actions, and which of an action's entries move an arm."""
+`ee` mode's pose changes or the `waypoint` and `anchored` modes' poses, through the IK), how
+lerobot records their actions, and which of an action's entries move an arm."""
 
 from __future__ import annotations
 

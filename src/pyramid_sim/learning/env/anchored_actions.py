@@ -1,5 +1,5 @@
 """The environment's `action_mode="anchored"`: the `waypoint` mode's actions given from the
-pick location or the arm's next target (task/anchors.py says why). The waypoint's controller,
+pick location, the arm's clear pose or its next target (task/anchors.py says why). The waypoint's controller,
 hands and limits are the `waypoint` mode's: an anchored action is turned into its waypoint
 at the step's start, with the anchors the policy observed."""
 

@@ -4,9 +4,9 @@ A step lasts 1/`fps` seconds (by default a recording's frame): the action is bot
 targets and finger gaps (`layout.Layout`), or as `action_mode` says (docs/learning.md). The
 environment feeds bricks to the spawn spot, and judges placements and failures from what
 happens, whoever drives it; `ExpertPolicy` (`expert_action()`) is the scripted builder
-(scheduler, primitives, mink IK) as a policy. Each reset draws its episode (`variation`: where the bricks are fed, where the
-structure stands, and at `full` the physical and visual randomization) from its seed: `reset(
-seed=s)` is the same episode bit for bit, `reset()` the next one of the environment's stream.
+(scheduler, primitives, mink IK) as a policy. Each reset draws its episode (`variation`: where
+the bricks are fed, where the structure stands, at `full` the physics and looks) from its seed:
+`reset(seed=s)` is the same episode bit for bit, `reset()` the next one of its stream.
 
 Reward: +1 for each brick that comes to rest on its target within the build's tolerances.
 Terminated on success (every target holds a brick at rest) or failure (`info["failure"]` says

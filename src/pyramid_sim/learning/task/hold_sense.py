@@ -24,12 +24,11 @@ class HoldSense:
 
     def __call__(self, data: Any) -> np.ndarray:
         """1.0 for a hand whose two pads touch one brick now."""
-        n = data.ncon
-        pairs = np.stack([data.contact.geom1[:n], data.contact.geom2[:n]]) if n else None
-        held = np.zeros(len(ARMS))
+        held, n = np.zeros(len(ARMS)), data.ncon
+        if n == 0:
+            return held
+        pairs = np.stack([data.contact.geom1[:n], data.contact.geom2[:n]])
         for k, (left_pad, right_pad) in enumerate(self.pads):
-            if pairs is None:
-                continue
             touched = [self._bricks(pairs, pad) for pad in (left_pad, right_pad)]
             held[k] = float(bool(touched[0] & touched[1]))
         return held
