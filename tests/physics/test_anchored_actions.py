@@ -71,7 +71,7 @@ def test_darts_noise_on_anchored_actions_moves_the_offsets_only():
     env.close()
 
 
-def test_an_anchored_recording_names_its_actions_and_replays_into_its_build(tmp_path):
+def test_an_anchored_recording_names_its_actions_and_replays_into_its_build(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
         root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="anchored",
@@ -88,10 +88,6 @@ def test_an_anchored_recording_names_its_actions_and_replays_into_its_build(tmp_
     actions = np.array(frames["action"])
     assert set(actions[:, 0]) == {0.0, 1.0, 2.0}
     env = _env()
-    env.reset(seed=0)
-    for action in actions:
-        _, _, terminated, truncated, info = env.step(np.array(action, dtype=np.float32))
-        if terminated or truncated:
-            break
+    terminated, info = replay(env, actions)
     assert terminated and info["is_success"]
     env.close()

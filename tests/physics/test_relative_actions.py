@@ -79,7 +79,7 @@ def test_the_expert_builds_in_relative_mode():
     assert terminated and info["is_success"] and info["result"]["bricks_placed"] == 2
 
 
-def test_a_relative_recording_replays_into_its_build_and_keeps_its_mode(tmp_path):
+def test_a_relative_recording_replays_into_its_build_and_keeps_its_mode(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
         root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="relative"
@@ -93,11 +93,7 @@ def test_a_relative_recording_replays_into_its_build_and_keeps_its_mode(tmp_path
     joints = _joints(env)
     # A relative action is small beside the posture it changes.
     assert np.median(np.abs(actions[:, joints])) < 0.05 < 0.5 < np.median(np.abs(states[:, joints]))
-    env.reset(seed=0)
-    for action in actions:
-        _, _, terminated, truncated, info = env.step(np.array(action, dtype=np.float32))
-        if terminated or truncated:
-            break
+    terminated, info = replay(env, actions)
     assert terminated and info["is_success"]
     with pytest.raises(pyramid_sim.ConfigError, match='action_mode "relative", this run "joint"'):
         pyramid_sim.record(root, "pyramid-even", layers=1, episodes=2, cameras=())

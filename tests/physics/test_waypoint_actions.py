@@ -139,7 +139,7 @@ def test_darts_noise_on_waypoints_moves_the_hands_positions_only():
     env.close()
 
 
-def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_path):
+def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
         root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="waypoint",
@@ -151,11 +151,7 @@ def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_p
     frames = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
     actions = np.array(frames["action"])
     env = _env()
-    env.reset(seed=0)
-    for action in actions:
-        _, _, terminated, truncated, info = env.step(np.array(action, dtype=np.float32))
-        if terminated or truncated:
-            break
+    terminated, info = replay(env, actions)
     assert terminated and info["is_success"]
     env.close()
 
