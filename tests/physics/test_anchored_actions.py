@@ -90,4 +90,7 @@ def test_an_anchored_recording_names_its_actions_and_replays_into_its_build(tmp_
     env = _env()
     terminated, info = replay(env, actions)
     assert terminated and info["is_success"]
+    loop = env.unwrapped.loop
+    spares = loop.handles.brick_body[len(loop.plan.bricks) :]
+    assert len(spares) and np.all(loop.data.xpos[spares][:, 2] < 0)  # none fed: none needed
     env.close()

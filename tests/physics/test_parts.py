@@ -64,6 +64,32 @@ def test_custody_alone_feeds_the_spot_from_the_magazine_in_order(scene):
     )  # the next still waits in the magazine
 
 
+@pytest.mark.parametrize("in_hand", [True, False])
+def test_a_brick_lifted_off_the_spot_in_a_hand_counts_as_picked_one_knocked_off_is_replaced(
+    scene, in_hand
+):
+    """Whoever drives the arms: the feeder stops once the structure's bricks have left the
+    spot in a hand (a learner's picks have no builder's grip to count), and replaces one
+    that left it otherwise. The hand's reading is set here; its contacts are tested with
+    the environment's `held`."""
+    model, data, handles, spawner = scene
+    custody = BrickCustody(data, handles, spawner, len(PLAN.bricks), CONFIG)
+    left_hand: set[int] = set()
+    custody.holds.slots = lambda _data: [left_hand, set()]
+    for slot in range(len(PLAN.bricks)):
+        assert custody.needs_brick() and custody.feed_spot() == slot
+        left_hand.clear()
+        if in_hand:
+            left_hand.add(slot)
+        q = handles.brick_qpos[slot]
+        data.qpos[q + 2] += 0.3  # lifted off the spot
+        mujoco.mj_forward(model, data)
+        custody.notice_taken()
+        assert spawner.current is None
+    assert custody.picked() == (len(PLAN.bricks) if in_hand else 0)
+    assert custody.needs_brick() is not in_hand  # a spare only for bricks no hand took
+
+
 def test_dispatch_alone_hands_the_first_picks_out_by_the_schedule(scene):
     model, data, handles, spawner = scene
     ik = DualArmIK(CONFIG)

@@ -21,6 +21,7 @@ from ..core.incidents import (
 from ..core.primitives import Step, StepKind
 from . import names as c
 from .handles import SceneHandles
+from .hold_sense import HoldSense
 from .spawner import Spawner
 
 
@@ -58,6 +59,8 @@ class BrickCustody:
         self._awake_before = False
         self._body_awake = data.body_awake  # a view MuJoCo keeps up
         self.failure: str | None = None  # set when a brick has been dropped too often
+        self.holds = HoldSense(data.model, handles, config.robot_description)
+        self.lifted: set[int] = set()  # slots a hand took off the spot
         # Where each brick lay when it was last put down by the magazine or the spawner, and
         # the bricks no arm has reached for yet: how far those move is `idle_motion`.
         self.rest = np.array([data.qpos[q : q + 3] for q in handles.brick_qpos])
@@ -95,6 +98,14 @@ class BrickCustody:
         if slot is not None and not self.spawner.rests_on_spot(self.data, slot, now=True):
             self.reached(slot)
             self.spawner.taken(slot)
+            if any(slot in held for held in self.holds.slots(self.data)):
+                self.lifted.add(slot)  # a hand took it, whoever drives the arms
+
+    def picked(self) -> int:
+        """How many bricks hands have taken off the spot for the structure: the scripted
+        builder's grips (a drop takes one back), and bricks that left the spot in a hand no
+        grip was counted for (a learner drives the arms: no builder's grip to count)."""
+        return len(self.slot_of) + len(self.lifted - set(self.slot_of.values()))
 
     def gripped(self, arm: Arm, brick: int) -> None:
         """The arm closed on the brick last offered on the spot, for build-order place
@@ -144,6 +155,7 @@ class BrickCustody:
         self.drops.append(drop)
         self.carry[arm] = None
         self.slot_of.pop(carry.index, None)
+        self.lifted.discard(carry.slot)
         if sum(e.brick == carry.index for e in self.drops) >= MAX_DROPS_PER_BRICK:
             self.failure = (
                 f"brick {carry.index} dropped {MAX_DROPS_PER_BRICK} times; last, "
@@ -164,8 +176,7 @@ class BrickCustody:
 
     def needs_brick(self) -> bool:
         """A brick is needed while some pick is still to come."""
-        picked = len(self.slot_of)
-        return picked + (1 if self.spawner.current is not None else 0) < self.bricks
+        return self.picked() + (1 if self.spawner.current is not None else 0) < self.bricks
 
     def feed_spot(self) -> int | None:
         """Give the next pick a brick: a dropped one lying on the spot as spawned is picked

@@ -25,6 +25,7 @@ import numpy as np
 
 from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
+from ...physics.hold_sense import HoldSense
 from ...physics.loop import BuildLoop
 from ...physics.motion_generator import arm_motion
 from ...physics.stops import no_motion_reason
@@ -35,7 +36,6 @@ from ..task.anchors import anchor_poses
 from ..task.contract import check_modes, check_reset_options, require_live_episode
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
-from ..task.hold_sense import HoldSense
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_failure, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer

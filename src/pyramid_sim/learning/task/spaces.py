@@ -25,7 +25,7 @@ def observation_space(
     order), each arm's next target (left first: which of the goals it works towards,
     anchors.next_targets), the tools (each hand's tool pose, left first: where the hands are,
     without a learner having to learn the arm's kinematics), whether each hand holds a brick
-    (hold_sense.py), and each camera's image."""
+    (physics/hold_sense.py), and each camera's image."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ...choices import ARMS
+from ..choices import ARMS
 
 
 class HoldSense:
@@ -24,13 +24,18 @@ class HoldSense:
 
     def __call__(self, data: Any) -> np.ndarray:
         """1.0 for a hand whose two pads touch one brick now."""
-        held, n = np.zeros(len(ARMS)), data.ncon
+        return np.array([float(bool(slots)) for slots in self.slots(data)])
+
+    def slots(self, data: Any) -> list[set[int]]:
+        """Each hand's bricks (magazine slots) that both of its pads touch now, left first."""
+        n = data.ncon
         if n == 0:
-            return held
+            return [set() for _ in self.pads]
         pairs = np.stack([data.contact.geom1[:n], data.contact.geom2[:n]])
-        for k, (left_pad, right_pad) in enumerate(self.pads):
+        held = []
+        for left_pad, right_pad in self.pads:
             touched = [self._bricks(pairs, pad) for pad in (left_pad, right_pad)]
-            held[k] = float(bool(touched[0] & touched[1]))
+            held.append(touched[0] & touched[1])
         return held
 
     def _bricks(self, pairs: np.ndarray, pad: int) -> set[int]:
