@@ -54,7 +54,7 @@ class Recipe:
     # the recording's rate, the policy's and the evaluation's: an episode of about 210 steps,
     # a chunk of 20 covering 2 s (docs/learning.md, "What the policy waits for")
     fps: int = 10
-    steps: int = 10000  # about 50 minutes on an idle core at 3.5 steps a second
+    steps: int = 4000  # about 20 minutes on an idle core at 3.5 steps a second
     learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
     batch_size: int = 32
     save_every: int = 1000
@@ -67,8 +67,11 @@ class Recipe:
     # ACT's default normalizes state, images and actions but not the environment state (the
     # bricks, goals and hands): a policy trained so ignored them (docs/benchmark.md)
     normalize_environment: bool = True
+    # each chunk of 2 s executed whole: replanning every 0.5 s, the policy put the release
+    # ahead of itself at every replan and held the brick over its target (docs/learning.md,
+    # "The feeder, and the whole chunk")
     chunk: int = 20
-    action_steps: int = 5
+    action_steps: int = 20
     episodes: int = 100
     max_steps: int | None = None
     curve_episodes: int = 0
