@@ -25,7 +25,6 @@ import numpy as np
 
 from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
-from ...physics.hold_sense import HoldSense
 from ...physics.loop import BuildLoop
 from ...physics.motion_generator import arm_motion
 from ...physics.stops import no_motion_reason
@@ -116,7 +115,6 @@ class BuildEnv(gymnasium.Env):
         )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
-        self.holds = HoldSense(self._loop.model, self._loop.handles, robot)
         self._expert = ExpertPolicy(self)
         self._start_episode()
 
@@ -261,7 +259,7 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
         "next": next_of(env.plan, env.goals, env.placing.placed),
         "tools": lay.tools(loop.data, loop.handles),
-        "held": env.holds(loop.data),
+        "held": loop.custody.holds(loop.data),
     }
     if env.cameras:
         observed["images"] = env.images(env.cameras)
