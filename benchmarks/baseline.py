@@ -5,7 +5,7 @@ evaluate` on held-out seeds.
 
     python benchmarks/baseline.py --out DIR [--quick] [--robot R] [--structure S --layers N]
                                   [--cameras A,B] [--steps N] [--curve N]
-                                  [--action-mode M] [--noise X]
+                                  [--action-mode M] [--noise X] [--linger S]
 
 Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
 (docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run),
@@ -48,6 +48,10 @@ class Recipe:
     image_size: int = 224  # record's default: a default recording's checkpoint evaluates as is
     demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
+    # s filmed after each build's success: ending there, a demonstration held a few frames
+    # after the last release and the policy held its last brick over the target to the end
+    # (docs/learning.md, "The last release")
+    linger: float = 2.0
     # where each hand goes, from the pick location, its clear pose or its next target: the
     # place is copied from the observation, not regressed (docs/learning.md, "Anchored actions")
     action_mode: str = "anchored"
@@ -96,6 +100,8 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     parser.add_argument("--demos", type=whole("demos"), default=None)
     parser.add_argument("--noise", type=number("noise"), default=None,
                         help="DART: rad of joint actions, m of waypoints")  # fmt: skip
+    parser.add_argument("--linger", type=number("linger"), default=None,
+                        help="s recorded after each build's success")  # fmt: skip
     parser.add_argument(
         "--action-mode",
         choices=("joint", "relative", "waypoint", "anchored"),
@@ -116,7 +122,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     if args.quick:
         recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
     given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
-             "episodes": args.episodes, "action_mode": args.action_mode,
+             "linger": args.linger, "episodes": args.episodes, "action_mode": args.action_mode,
              "fps": None if args.fps is None else int(args.fps)}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     for name in ("steps", "demos", "episodes", "workers"):
@@ -134,7 +140,7 @@ def record(out: Path, recipe: Recipe) -> float:
         episodes=recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=(recipe.image_size, recipe.image_size), variation=recipe.variation,
         noise=recipe.noise, workers=recipe.workers, action_mode=recipe.action_mode,
-        fps=recipe.fps,
+        fps=recipe.fps, linger=recipe.linger,
     )  # fmt: skip
     return time.perf_counter() - start
 

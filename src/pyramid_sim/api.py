@@ -20,6 +20,7 @@ from .choices import (
     EVAL_FIRST_SEED,
     RECORD_CAMERAS,
     RECORD_IMAGE_SIZE,
+    RECORD_LINGER,
     ArmChoice,
 )
 from .config import SimConfig, VideoConfig, check_film
@@ -170,23 +171,9 @@ def _prepare_gl(render: bool) -> None:
 
 
 # record's own keywords: not settings of the build
-RECORD_KEYWORDS = (
-    "episodes",
-    "seed",
-    "fps",
-    "cameras",
-    "image_size",
-    "variation",
-    "randomize",
-    "workers",
-    "backend",
-    "ray_address",
-    "noise",
-    "action_mode",
-    "on_frame",
-    "on_episode",
-    "arms",
-)
+RECORD_KEYWORDS = ("episodes", "seed", "fps", "cameras", "image_size", "variation", "randomize",
+                   "workers", "backend", "ray_address", "noise", "linger", "action_mode",
+                   "on_frame", "on_episode", "arms")  # fmt: skip
 
 
 def record(
@@ -205,6 +192,7 @@ def record(
     backend: str = "process",
     ray_address: str | None = None,
     noise: float = 0.0,
+    linger: float = RECORD_LINGER,
     action_mode: str = "joint",
     on_frame: Any = None,
     on_episode: Any = None,
@@ -217,34 +205,24 @@ def record(
     layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once, in
     processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
     started here). With `noise` (rad), what is executed is the expert's joint targets plus an
-    offset drawn each second, the label the expert's, planned from where the arm is (DART).
-    `action_mode` relative writes each joint's action as its change from the frame's state.
-    Episodes already in `out` are kept. `on_frame(episode, its frames so far)` hears each frame
-    (with workers, an episode's all at once), `on_episode(episodes in the dataset)` the count
-    before the first is filmed and after each lands. `options` as for `build`."""
+    offset drawn each second, the label the expert's, planned from where the arm is (DART); a
+    build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
+    action as its change from the frame's state. Episodes already in `out` are kept.
+    `on_frame(episode, its frames so far)` hears each frame (with workers, an episode's all at
+    once), `on_episode(episodes in the dataset)` the count before the first is filmed and after
+    each lands. `options` as for `build`."""
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     from .learning.recording.record import RecordConfig
+    from .learning.recording.record import record as run
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
+    size: Any = tuple(image_size)  # checked by RecordConfig
     settings_ = RecordConfig(
-        name,
-        {**sizes, "arms": arms, "config": config},
-        episodes,
-        seed,
-        fps,
-        tuple(cameras),
-        tuple(image_size),  # type: ignore[arg-type]
-        variation,
-        tuple(randomize),
-        True,
-        workers,
-        backend,
-        ray_address,
-        noise,
-        action_mode,
-    )
+        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, tuple(cameras),
+        size, variation, tuple(randomize), True, workers, backend, ray_address, noise,
+        action_mode, linger,
+    )  # fmt: skip
     _prepare_gl(render=bool(cameras))
-    from .learning.recording.record import record as run
 
     return run(Path(out), settings_, on_frame, on_episode)
 

@@ -37,6 +37,9 @@ FPS_CHOICES = (10, 20, 25, 50, 100)
 RECORD_CAMERAS: tuple[str, ...] = ("overview", "left_wrist", "right_wrist")
 RECORD_IMAGE_SIZE = (224, 224)
 RECORD_FPS = 25
+# s a recording films after a build succeeds: the last brick's release and the hands leaving
+# (an episode that ended at its success would teach the last release from a few frames).
+RECORD_LINGER = 2.0
 # The first seed an evaluation scores (recordings start at 0: the two never overlap).
 EVAL_FIRST_SEED = 100_000
 # The Gymnasium ids pyramid_sim registers when imported: its own keys, and lerobot's.
@@ -64,6 +67,7 @@ __all__ = [
     "RECORD_CAMERAS",
     "RECORD_FPS",
     "RECORD_IMAGE_SIZE",
+    "RECORD_LINGER",
     "ARMS",
     "ARM_CHOICES",
     "BACKENDS",

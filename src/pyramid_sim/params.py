@@ -150,6 +150,11 @@ class Bound:
         """ConfigError naming the value and this range unless `value` is within it."""
         check_range(self.name, value, self.low, self.high, low_open=self.low_open)
 
+    def checked(self, value: Any) -> float:
+        """`value` as a float, once `check` has let it through."""
+        self.check(value)
+        return float(value)
+
     @property
     def whole_text(self) -> str:
         """`low to high`: the range of a count, its ends written whole (1 to 10000000)."""
@@ -172,6 +177,7 @@ SWEEP_WORKERS = Bound("workers", 1, 256)  # a sweep's runs at once: a Ray cluste
 REPEATS = Bound("repeats", 1, 100)  # a sweep's runs a grid point
 MAX_STEPS = Bound("max steps", 1, 10_000_000)
 NOISE = Bound("noise", 0.0, 0.05)  # rad: DART's offset on the executed joint targets
+LINGER = Bound("linger", 0.0, 10.0)  # s an episode goes on after its build succeeded
 IMAGE_HEIGHT = Bound("image height", 16, 1080)  # pixels, even
 IMAGE_WIDTH = Bound("image width", 16, 1920)
 IMAGE_SIZE_TEXT = f"even, {IMAGE_HEIGHT.whole_text} high and {IMAGE_WIDTH.whole_text} wide"

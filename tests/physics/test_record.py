@@ -72,7 +72,10 @@ def test_the_dataset_is_lerobots_v3_layout(dataset):
     ]
     assert info["features"]["next.success"]["dtype"] == "bool"
     data = pq.read_table(root / "data/chunk-000/file-000.parquet").to_pydict()
-    assert data["next.success"][-1] is True and not any(data["next.success"][:-1])
+    success, done = data["next.success"], data["next.done"]
+    built = success.index(True)  # from the build's success on, 2 s more (the default linger)
+    assert all(success[built:]) and len(success) - built == 2 * 25 + 1
+    assert done[-1] is True and not any(done[:-1])
     first = np.array(data["observation.environment_state"][0])[: 4 * 7].reshape(4, 7)
     assert abs(first[0, 2] - 0.11) < 1e-3  # the first brick lies on the spot, 11 cm up
     pick = np.array(data["observation.environment_state"][0])[28:31]
@@ -191,8 +194,9 @@ def test_another_recording_into_the_same_folder_is_refused(dataset, tmp_path):
 
 
 def test_a_recording_made_before_action_modes_resumes_as_joint(dataset, tmp_path):
-    """Episode records written before `action_mode` existed hold none: they were joint
-    targets, so a joint run resumes them and a relative one is refused, naming both."""
+    """Episode records written before `action_mode` and `linger` existed hold neither: they
+    were joint targets ending at the success, so such a run resumes them and another is
+    refused, naming both values."""
     import shutil
 
     root, _ = dataset
@@ -200,11 +204,13 @@ def test_a_recording_made_before_action_modes_resumes_as_joint(dataset, tmp_path
     shutil.copytree(root, copy)
     for path in (copy / "meta/pyramid_sim").glob("episode_*.json"):
         record = json.loads(path.read_text())
-        del record["config"]["action_mode"]
+        del record["config"]["action_mode"], record["config"]["linger"]
         path.write_text(json.dumps(record))
     with pytest.raises(pyramid_sim.ConfigError, match='action_mode "joint", this run "relative"'):
-        _record(copy, 3, action_mode="relative")
-    assert _record(copy, 3).added == 1
+        _record(copy, 3, action_mode="relative", linger=0.0)
+    with pytest.raises(pyramid_sim.ConfigError, match="linger 0.0, this run 2.0"):
+        _record(copy, 3)  # nor did they linger after a success
+    assert _record(copy, 3, linger=0.0).added == 1
 
 
 @pytest.mark.parametrize(
@@ -212,6 +218,7 @@ def test_a_recording_made_before_action_modes_resumes_as_joint(dataset, tmp_path
     [
         ({"seed": 7}, "first_seed 0, this run 7"),
         ({"friction": 0.5}, "options.config.brick.friction 1.0, this run 0.5"),
+        ({"linger": 0.5}, "linger 2.0, this run 0.5"),
     ],
 )
 def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
@@ -239,6 +246,7 @@ def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
         (["--backend", "slurm"], "backend: unknown 'slurm'; accepted process, ray"),
         (["--ray-address", "auto"], "ray address: only with --backend ray"),
         (["--action-mode", "ee"], "--action-mode: invalid choice: 'ee' (choose from 'joint', "),
+        (["--linger", "11"], "linger: '11' is out of range; accepted [0, 10]"),
     ],
 )
 def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):

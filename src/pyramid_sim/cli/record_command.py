@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
 
-from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES
+from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_LINGER
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import IMAGE_SIZE_TEXT, NOISE, WORKERS, parse_whole
+from ..params import IMAGE_SIZE_TEXT, LINGER, NOISE, WORKERS, Bound, parse_whole
 from .args import (
     add_backend_args,
     add_out_args,
@@ -39,13 +40,18 @@ def image_size(text: str) -> tuple[int, int]:
     return parts[0], parts[1]
 
 
-def noise(text: str) -> float:
-    """DART's noise (rad, or m in the waypoint and anchored modes), refused here when out of
-    range (before anything is imported)."""
-    value = number("noise")(text)
-    if not NOISE.low <= value <= NOISE.high:
-        raise argparse.ArgumentTypeError(f"noise: {text!r} is out of range; accepted {NOISE.text}")
-    return value
+def bounded(bound: Bound) -> Callable[[str], float]:
+    """A flag's number, refused here when outside `bound` (before anything is imported)."""
+
+    def parse(text: str) -> float:
+        value = number(bound.name)(text)
+        if not bound.low <= value <= bound.high:
+            raise argparse.ArgumentTypeError(
+                f"{bound.name}: {text!r} is out of range; accepted {bound.text}"
+            )
+        return value
+
+    return parse
 
 
 def add_record_args(p: argparse.ArgumentParser) -> None:
@@ -87,12 +93,20 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--noise",
-        type=noise,
+        type=bounded(NOISE),
         default=0.0,
         metavar="SCALE",
         help="DART: each joint's executed target (rad), or in the waypoint and anchored modes "
         "each hand's x, y and z (m), off the expert's by an offset drawn every second from "
         f"N(0, SCALE), the expert's correction kept as the label; {NOISE.text} (default 0)",
+    )
+    p.add_argument(
+        "--linger",
+        type=bounded(LINGER),
+        default=RECORD_LINGER,
+        metavar="SECONDS",
+        help="seconds an episode that built goes on being filmed: the last release and the "
+        f"hands leaving, taught as the first; {LINGER.text} (default {RECORD_LINGER:g})",
     )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
@@ -138,6 +152,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             backend=args.backend,
             ray_address=args.ray_address,
             noise=args.noise,
+            linger=args.linger,
             action_mode=args.action_mode,
             config=config,
             **sizes,

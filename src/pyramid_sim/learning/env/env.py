@@ -9,25 +9,24 @@ the bricks are fed, where the structure stands, at `full` the physics and looks)
 `reset(seed=s)` is the same episode bit for bit, `reset()` the next one of its stream.
 
 Reward: +1 for each brick that comes to rest on its target within the build's tolerances.
-Terminated on success (every target holds a brick at rest) or failure (`info["failure"]` says
+Terminated on success (every target holds a brick at rest; with `linger`, that many seconds
+later, the hands' letting go and leaving filmed too) or failure (`info["failure"]` says
 which: a brick off the table, arm-arm contact, a joint past its speed or torque limit, MuJoCo's
 warnings, the expert giving a brick up); truncated at the build's time limit.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 import gymnasium
-import mink
 import numpy as np
 
 from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
+from ...params import LINGER
 from ...physics.loop import BuildLoop
 from ...physics.motion_generator import arm_motion
-from ...physics.stops import no_motion_reason
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
@@ -36,18 +35,17 @@ from ..task.contract import check_modes, check_reset_options, require_live_episo
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
-from ..task.outcome import PlacementWatch, episode_failure, episode_info
+from ..task.outcome import PlacementWatch, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
 from . import relative_actions as rel
 from .action_modes import action_parts
 from .anchored_actions import clear_frames, hand_action, waypoint_action
+from .control_steps import episode_end, run_control_steps
 from .expert import ExpertPolicy
 from .target_spline import spline_ramp
 
-CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
-# told within 0.1 s of simulated time
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
-       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints")  # fmt: skip
+       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints", "linger")  # fmt: skip
 
 
 class BuildEnv(gymnasium.Env):
@@ -57,6 +55,8 @@ class BuildEnv(gymnasium.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
     _reset_needed = True  # Gymnasium's contract: reset before the first step
     anchors = np.zeros((2, 3, 4))  # the anchored mode's frames, from each observation
+    built_at: float | None = None  # sim time (s) of this episode's success
+    footprints = True  # the targets drawn on the table for the cameras
 
     def __init__(
         self,
@@ -75,6 +75,7 @@ class BuildEnv(gymnasium.Env):
         randomize: tuple[str, ...] = (),
         action_mode: str = "joint",
         footprints: bool = True,
+        linger: float = 0.0,
         **options: Any,
     ) -> None:
         check_modes(action_mode, render_mode)
@@ -93,8 +94,8 @@ class BuildEnv(gymnasium.Env):
         self.camera_name = lay.check_cameras((camera_name,), robot)[0]
         self._camera_ids = lay.camera_names(robot)
         self.structure_spec, self.arms = spec, arms
-        self.limit_commands = bool(limit_commands)
-        self.footprints = bool(footprints)  # the targets drawn on the table for the cameras
+        self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
+        self.linger = LINGER.checked(linger)  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
         self._renderer: Any = None
         self._eyes: Any = None  # the cameras' renderer, made at the first observation
@@ -137,6 +138,7 @@ class BuildEnv(gymnasium.Env):
         self.generator.reset(held)
         self.ee.reset(loop)
         self._expert.reset()
+        self.built_at = None
         self._steps = 0
         self.steps_taken = 0  # environment steps in this episode
         self.ended = False
@@ -169,11 +171,8 @@ class BuildEnv(gymnasium.Env):
         if self.action_mode not in HAND_ACTION_MODES and not self.limit_commands:
             ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
         failure, newly = run_control_steps(self, target, ramp)
-        loop = self._loop
         self.generator.lag()  # its peak is the episode's (0 where it is not used)
-        success = self.placing.count == len(self.plan.bricks)
-        truncated = not success and loop.data.time > self.config.max_sim_time
-        terminated = not truncated and (success or failure is not None)
+        success, terminated, truncated = episode_end(self, failure)
         self.ended = terminated or truncated
         return (
             self._observe(),
@@ -264,35 +263,3 @@ def observe(env: BuildEnv) -> dict[str, Any]:
     if env.cameras:
         observed["images"] = env.images(env.cameras)
     return observed
-
-
-def run_control_steps(
-    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None
-) -> tuple[str | None, int]:
-    """One environment step's control steps toward `target`: why the episode failed, if it
-    did, and how many targets newly hold a brick."""
-    loop, steps = env.loop, env.control_steps
-    failure: str | None = None
-    newly = 0
-    for k in range(1, steps + 1):
-        try:
-            failure = loop.apply(command_at(env, target, ramp, k / steps))
-        except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
-            failure = no_motion_reason(loop.data.time)
-        newly += env.placing.update(loop)
-        env._steps += 1
-        failure = failure or episode_failure(loop, env._steps % CHECK_EVERY == 0)
-        if failure is not None or env.placing.count == len(env.plan.bricks):
-            break
-    return failure, newly
-
-
-def command_at(
-    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None, share: float
-) -> np.ndarray:
-    """The command for one control step, `share` through an environment step toward `target`:
-    the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
-    if env.action_mode in HAND_ACTION_MODES:  # the IK's joints, through the generator
-        command = env.ee.command(env.loop, target)
-        return env.generator.step(command) if env.limit_commands else command
-    return env.generator.step(target) if ramp is None else ramp(share)

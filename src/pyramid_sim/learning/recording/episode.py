@@ -122,14 +122,15 @@ def expert_episode(
 ) -> EpisodeEnd:
     """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame each
     environment step (the environment steps at the dataset's rate), at most `step_limit`
-    frames, as an evaluation's; the last is done. With
+    frames, as an evaluation's (and the environment's `linger` after a success); the last is
+    done. With
     `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
     action is still the expert's: what to do from where the arm really is. Waypoint labels
     are led past a move's end (lead_labels.py)."""
     led = LeadLabels(env.fps, on_frame, (PRIMITIVES.index("grip"), PRIMITIVES.index("release")))
     obs, _ = env.reset(seed=seed)
     executed = JointNoise(env, seed, noise)
-    limit = step_limit(len(env.plan.bricks), env.fps)
+    limit = step_limit(len(env.plan.bricks), env.fps) + round(env.linger * env.fps)
     frames = 0
     while True:
         action = env.expert_action()

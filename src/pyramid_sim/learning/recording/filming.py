@@ -28,6 +28,7 @@ def make_env(config: RecordConfig) -> BuildEnv:
         image_size=config.image_size,
         randomize=config.randomize,
         action_mode=config.action_mode,
+        linger=config.linger,
         **config.options,
     )
 

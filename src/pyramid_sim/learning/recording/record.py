@@ -40,7 +40,7 @@ DATASET_DOC = f"{RECORDS}/dataset.json"
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
 RUN_ONLY = ("episodes", "workers", "backend", "ray_address")
 # Settings added since the first recordings, as an episode recorded before them had them.
-LATER_SETTINGS = {"action_mode": "joint"}
+LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0}
 
 
 def _records(root: Path) -> dict[int, dict[str, Any]]:
@@ -227,6 +227,7 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "randomize": list(env.randomize),
         "limit_commands": config.limit_commands,
         "action_mode": config.action_mode,
+        "linger": config.linger,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
 
@@ -236,7 +237,7 @@ def _check_same_recording(
 ) -> None:
     """ConfigError if `out` holds episodes recorded with other settings (the structure, its
     size and build settings, the frame rate, cameras, image size, variation, randomized
-    parts, first seed, command limits): each shapes the files, and a dataset is one recording."""
+    parts, first seed, command limits, linger): each shapes the files, and a dataset is one recording."""
     wanted = _settings(config)
     for index, rec in sorted(records.items()):
         kept = {**LATER_SETTINGS, **rec.get("config", {})}

@@ -6,11 +6,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ...choices import RECORD_ACTION_MODES, RECORD_CAMERAS, RECORD_IMAGE_SIZE, in_words
+from ...choices import (
+    RECORD_ACTION_MODES,
+    RECORD_CAMERAS,
+    RECORD_IMAGE_SIZE,
+    RECORD_LINGER,
+    in_words,
+)
 from ...config import MotionConfig
 from ...errors import ConfigError
 from ...jobs.backends import check_backend
-from ...params import EPISODES, NOISE, WORKERS
+from ...params import EPISODES, LINGER, NOISE, WORKERS
 from ..task.layout import check_image_size, control_steps
 from ..task.variation import DEFAULT_LEVEL, check_level
 
@@ -35,6 +41,7 @@ class RecordConfig:
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
     noise: float = 0.0  # rad: DART's offset on the executed joints, the expert's own the label
     action_mode: str = "joint"  # or relative: each joint's action its change from the state
+    linger: float = RECORD_LINGER  # s filmed after the build succeeds: the last release taught
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
@@ -44,6 +51,7 @@ class RecordConfig:
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
         NOISE.check(self.noise)
+        LINGER.check(self.linger)
         if self.action_mode not in RECORD_ACTION_MODES:
             raise ConfigError(
                 f"action mode: {self.action_mode!r} is not recorded; accepted "
