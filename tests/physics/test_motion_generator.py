@@ -1,12 +1,15 @@
 """The motion generator between a policy's targets and the servos: its command never moves
 faster, accelerates harder or jerks more than its limits, never overshoots a target, and
-arrives there at rest; the robot's limits reach it; bad limits are refused."""
+arrives there at rest; the robot's limits and the action mode's jerk time reach it; bad limits
+are refused."""
 
 import numpy as np
 import pytest
 
 from pyramid_sim.physics.motion_generator import (
     ACCELERATION_SHARE,
+    JERK_TIME,
+    JOINT_JERK_TIME,
     MotionGenerator,
     MotionLimits,
     motion_limits,
@@ -71,6 +74,32 @@ def test_the_robots_limits_reach_the_generator():
     assert (
         limits.speed[gap] > limits.falling[gap] == pytest.approx(2 * 2 * panda.finger_stroke / 0.35)
     )
+
+
+@pytest.mark.parametrize("jerk_time", [JERK_TIME, JOINT_JERK_TIME])
+def test_the_jerk_time_reaches_the_command(jerk_time):
+    """Every entry toward a far target from rest: the command's jerk, read off its path, comes
+    up to acceleration / `jerk_time` and never past it."""
+    limits = motion_limits(robot("panda"), close_time=0.35, jerk_time=jerk_time)
+    generator = MotionGenerator(limits, DT)
+    generator.reset(np.zeros(len(limits.speed)))
+    path = _run(generator, [np.where(limits.fingers, 0.03, 0.5)], 400)
+    peak = np.abs(np.diff(path, n=3, axis=0) / DT**3).max(axis=0)
+    most = limits.acceleration / jerk_time
+    assert np.all(peak <= most * 1.01)
+    assert np.all(peak[limits.fingers] >= 0.9 * most[limits.fingers])
+    assert np.any(peak[~limits.fingers] >= 0.9 * most[~limits.fingers])  # the one that paces
+
+
+def test_the_joint_modes_filter_the_policys_targets_harder_than_the_hand_modes():
+    """Straight from a policy to the generator (joint, relative) the jerk is reached in
+    JOINT_JERK_TIME; behind the IK (the hand modes) in JERK_TIME."""
+    from pyramid_sim.learning.env.env import BuildEnv
+
+    for mode, jerk_time in [("joint", JOINT_JERK_TIME), ("relative", JOINT_JERK_TIME),
+                            ("anchored", JERK_TIME), ("ee", JERK_TIME)]:  # fmt: skip
+        limits = BuildEnv("pyramid-even", layers=1, action_mode=mode).generator.limits
+        assert limits.jerk == pytest.approx(limits.acceleration / jerk_time), mode
 
 
 @pytest.mark.parametrize("field", ["speed", "falling", "acceleration", "jerk"])

@@ -19,6 +19,9 @@ from .ik_terms import ARM_VELOCITY_MARGIN, VELOCITY_MARGIN
 ACCELERATION_SHARE = 0.5  # of the joints' acceleration limits: at full, several joints at once
 # asked for more torque than the arm has
 JERK_TIME = 0.05  # s from rest to full acceleration: the jerk limit is acceleration / this
+# The same where a policy's joint targets reach the generator straight (the joint modes): it
+# is then the only filter between a jittering policy and the servos (docs/learning.md)
+JOINT_JERK_TIME = 0.15
 GRIPPER_SPEED = 2.0  # times the gap's full stroke a close time: fingers closing on a brick
 OPENING_SPEED = 10.0  # the same, opening: a hand lets go at once, before a jolt drags the brick
 
@@ -42,10 +45,12 @@ class MotionLimits:
                 raise ValueError(f"motion limits: {name} must be positive and finite, entry-wise")
 
 
-def motion_limits(robot: RobotDescription, close_time: float) -> MotionLimits:
+def motion_limits(
+    robot: RobotDescription, close_time: float, jerk_time: float = JERK_TIME
+) -> MotionLimits:
     """The robot's limits in the command's order: the joints at the IK's speed margins and
-    ACCELERATION_SHARE of their acceleration limits, the finger gap closing at GRIPPER_SPEED
-    strokes a `close_time` and opening at OPENING_SPEED."""
+    ACCELERATION_SHARE of their acceleration limits, reached in `jerk_time`, the finger gap
+    closing at GRIPPER_SPEED strokes a `close_time` and opening at OPENING_SPEED."""
     speed: list[float] = []
     falling: list[float] = []
     acceleration: list[float] = []
@@ -59,11 +64,11 @@ def motion_limits(robot: RobotDescription, close_time: float) -> MotionLimits:
             fingers.append(False)
         speed.append(OPENING_SPEED * stroke / close_time)
         falling.append(GRIPPER_SPEED * stroke / close_time)
-        acceleration.append(speed[-1] / JERK_TIME)
+        acceleration.append(speed[-1] / jerk_time)
         fingers.append(True)
     most = np.array(acceleration)
     return MotionLimits(
-        np.array(speed), np.array(falling), most, most / JERK_TIME, np.array(fingers)
+        np.array(speed), np.array(falling), most, most / jerk_time, np.array(fingers)
     )
 
 
@@ -129,7 +134,7 @@ class MotionGenerator:
         return lag
 
 
-def arm_motion(config: SimConfig) -> MotionGenerator:
+def arm_motion(config: SimConfig, jerk_time: float = JERK_TIME) -> MotionGenerator:
     """The motion generator of the settings' robot, stepped at the control rate."""
-    limits = motion_limits(config.robot_description, config.gripper.close_time)
+    limits = motion_limits(config.robot_description, config.gripper.close_time, jerk_time)
     return MotionGenerator(limits, config.motion.control_dt)

@@ -26,14 +26,18 @@ TURN_CAP = 0.1  # rad: the most the aim is turned, setting a brick down
 PATIENCE = 1.0  # s after a move's path ends before the IK's own error is enough again
 PLACING = ("servo", "release")  # the steps that set a carried brick down
 REST_SPEED = 0.01  # m/s: a tool slower than this has settled; a lag still closing is no error
+# s the tool's velocity and miss are averaged over where a policy's joint targets jitter the
+# arm (the joint modes), so the jitter averages out of both rather than reading as motion
+JOINT_SMOOTH_TIME = 0.1
 
 
 class ToolFeedback:
     """Each arm's aim shift (`aim`) and the measured error a move's end is judged by
     (`error_of`), read from the loop's data at the arms' tool sites and carried bricks."""
 
-    def __init__(self, loop: BuildLoop) -> None:
+    def __init__(self, loop: BuildLoop, smooth_time: float = 0.0) -> None:
         self.data, self.sites = loop.data, loop.handles.tcp_site
+        self.smooth_time = smooth_time  # s; 0 reads each control step as it is
         self.dispatch, self.custody = loop.dispatch, loop.custody
         self.dt = loop.config.motion.control_dt
         self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
@@ -45,7 +49,9 @@ class ToolFeedback:
         self._step: dict[Arm, object] = {a: None for a in c.ARMS}
         self._held: dict[Arm, tuple[int, int] | None] = {a: None for a in c.ARMS}
         self._was = {a: self.data.site_xpos[self.sites[a]].copy() for a in c.ARMS}
-        self._speed = {a: 0.0 for a in c.ARMS}  # m/s, the tool's over the last control step
+        self._velocity = {a: np.zeros(3) for a in c.ARMS}  # m/s, the tool's, smoothed
+        self._speed = {a: 0.0 for a in c.ARMS}  # m/s, its norm
+        self._smooth_miss = {a: np.zeros(3) for a in c.ARMS}  # m, `_miss`'s, smoothed
 
     def aim(self, arm: Arm, pose: Pose) -> Pose:
         """Where the IK aims for the arm's tool to come to `pose`."""
@@ -67,6 +73,20 @@ class ToolFeedback:
             target, body = self._targets[brick], self.custody.handles.brick_body[slot]
             miss[:2] = (target.x, target.y) - self.data.xpos[body][:2]
         return miss
+
+    def _read_speed(self, arm: Arm, moved: np.ndarray) -> float:
+        """The tool's speed (m/s) over the control step it `moved`, smoothed where asked (and
+        its miss with it)."""
+        if not self.smooth_time:
+            return float(np.linalg.norm(moved)) / self.dt
+        share = min(1.0, self.dt / self.smooth_time)
+        self._velocity[arm] += (moved / self.dt - self._velocity[arm]) * share
+        self._smooth_miss[arm] += (self._miss(arm) - self._smooth_miss[arm]) * share
+        return float(np.linalg.norm(self._velocity[arm]))
+
+    def _read_miss(self, arm: Arm) -> np.ndarray:
+        """`_miss` as the feedback reads it: smoothed, or as it is now."""
+        return self._smooth_miss[arm] if self.smooth_time else self._miss(arm)
 
     def _turn_miss(self, arm: Arm) -> float:
         """The yaw (rad) the brick being set down lacks to its target's (a brick turned half
@@ -94,7 +114,7 @@ class ToolFeedback:
             if runner.current is not self._step[arm]:
                 self._step[arm], self._waited[arm] = runner.current, 0.0
             tool = self.data.site_xpos[self.sites[arm]]
-            speed = self._speed[arm] = float(np.linalg.norm(tool - self._was[arm])) / self.dt
+            speed = self._speed[arm] = self._read_speed(arm, tool - self._was[arm])
             self._was[arm] = tool.copy()
             if runner.current is None or not runner.started or runner.time_left() > 0.0:
                 continue
@@ -104,7 +124,7 @@ class ToolFeedback:
             if speed > REST_SPEED:  # still arriving: what is left may be the lag, not an offset
                 continue
             gain = self.dt / TIME_CONSTANT
-            self.bias[arm] = np.clip(self.bias[arm] + self._miss(arm) * gain, -CAP, CAP)
+            self.bias[arm] = np.clip(self.bias[arm] + self._read_miss(arm) * gain, -CAP, CAP)
             turned = self.turn[arm] + self._turn_miss(arm) * gain
             self.turn[arm] = float(np.clip(turned, -TURN_CAP, TURN_CAP))
 
@@ -120,15 +140,16 @@ class ToolFeedback:
             if self._speed[arm] > REST_SPEED and self._placing(arm) is not None:
                 return math.inf  # a brick let go from a swaying hand is dragged off its place
             ends = self._turn_miss(arm) * self._half_length
-            return float(np.sqrt(np.sum(self._miss(arm) ** 2) + ends**2))
+            return float(np.sqrt(np.sum(self._read_miss(arm) ** 2) + ends**2))
 
         return error
 
 
-def close_loop(loop: BuildLoop) -> None:
+def close_loop(loop: BuildLoop, smooth_time: float = 0.0) -> None:
     """Close the expert's loop in `loop` on the measured tool and brick: its moves' ends
-    judged and its aim shifted by a `ToolFeedback`, its releases letting go at once."""
-    loop.feedback = ToolFeedback(loop)
+    judged and its aim shifted by a `ToolFeedback` (reading over `smooth_time`), its releases
+    letting go at once."""
+    loop.feedback = ToolFeedback(loop, smooth_time)
     loop.ik_rate.aim = loop.feedback.aim
     loop.arrival = {a: loop.feedback.error_of(a) for a in c.ARMS}
     for runner in loop.dispatch.runners.values():

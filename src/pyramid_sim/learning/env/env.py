@@ -26,7 +26,7 @@ from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
 from ...params import LINGER
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import arm_motion
+from ...physics.motion_generator import JERK_TIME, JOINT_JERK_TIME, arm_motion
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
@@ -108,7 +108,8 @@ class BuildEnv(gymnasium.Env):
         self.ee, self.action_units, self.action_space = action_parts(
             action_mode, self.config, self.layout, self.control_steps, self.lerobot_units
         )
-        self.generator = arm_motion(self.config)
+        hands = action_mode in HAND_ACTION_MODES  # the IK between the policy and the generator
+        self.generator = arm_motion(self.config, JERK_TIME if hands else JOINT_JERK_TIME)
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
         self.observation_space = observation_space(

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ...choices import HAND_ACTION_MODES
-from ...physics.tool_feedback import close_loop, take_over
+from ...physics.tool_feedback import JOINT_SMOOTH_TIME, close_loop, take_over
 from .anchored_actions import hand_action
 from .relative_actions import led, relative
 
@@ -43,7 +43,8 @@ class ExpertPolicy:
         """A new episode (also noticed by itself when the environment was reset)."""
         self._loop = self.env.loop
         if self.env.limit_commands:  # with the motion generator between it and the servos
-            close_loop(self._loop)
+            joints = self.env.action_mode not in HAND_ACTION_MODES  # a policy's jitter on them
+            close_loop(self._loop, JOINT_SMOOTH_TIME if joints else 0.0)
         self._done = False
         self._asked = -1
         self._last = None
