@@ -57,10 +57,9 @@ def test_white_noise_on_the_joint_targets_still_builds():
 def test_without_the_joint_modes_filtering_white_noise_sets_a_brick_off(monkeypatch):
     """The generator's jerk and the expert's reading as the hand modes have them: a brick
     lands more than the 5 mm tolerance off, and the episode reaches its step limit."""
-    from pyramid_sim.learning.env import env as env_module
-    from pyramid_sim.learning.env import expert
+    from pyramid_sim.learning.env import action_modes, expert
 
-    monkeypatch.setattr(env_module, "JOINT_JERK_TIME", env_module.JERK_TIME)
+    monkeypatch.setattr(action_modes, "JOINT_JERK_TIME", action_modes.JERK_TIME)
     monkeypatch.setattr(expert, "JOINT_SMOOTH_TIME", 0.0)
     env = gymnasium.make(ENV, **TASK).unwrapped
     info = _noisy_episode(env, 100_004)

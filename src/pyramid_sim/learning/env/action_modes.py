@@ -11,6 +11,7 @@ from gymnasium import spaces
 
 from ...choices import HAND_ACTION_MODES, WAYPOINT_MODES
 from ...config import SimConfig
+from ...physics.motion_generator import JERK_TIME, JOINT_JERK_TIME, MotionGenerator, arm_motion
 from ..task.layout import Layout
 from ..task.lerobot_units import LerobotUnits, own_units
 from ..task.spaces import joint_space
@@ -49,3 +50,11 @@ def moved_entries(env: BuildEnv) -> np.ndarray:
         moved = ("x", "y", "z", "dx", "dy", "dz")
         return np.array([name.split("/")[-1] in moved for name in env.action_units.names])
     return env.layout.joints
+
+
+def mode_motion(config: SimConfig, action_mode: str) -> MotionGenerator:
+    """The motion generator for `action_mode`: behind the IK (the hand modes) it follows the
+    IK closely; fed a policy's joint targets straight, it is their only filter, and reaches
+    its jerk slower (docs/learning.md, "The joint modes' filtering")."""
+    hands = action_mode in HAND_ACTION_MODES
+    return arm_motion(config, JERK_TIME if hands else JOINT_JERK_TIME)

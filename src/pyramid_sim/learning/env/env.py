@@ -26,7 +26,6 @@ from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
 from ...params import LINGER
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JERK_TIME, JOINT_JERK_TIME, arm_motion
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
@@ -38,7 +37,7 @@ from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
 from . import relative_actions as rel
-from .action_modes import action_parts
+from .action_modes import action_parts, mode_motion
 from .anchored_actions import clear_frames, hand_action, waypoint_action
 from .control_steps import episode_end, run_control_steps
 from .expert import ExpertPolicy
@@ -108,8 +107,7 @@ class BuildEnv(gymnasium.Env):
         self.ee, self.action_units, self.action_space = action_parts(
             action_mode, self.config, self.layout, self.control_steps, self.lerobot_units
         )
-        hands = action_mode in HAND_ACTION_MODES  # the IK between the policy and the generator
-        self.generator = arm_motion(self.config, JERK_TIME if hands else JOINT_JERK_TIME)
+        self.generator = mode_motion(self.config, action_mode)
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
         self.observation_space = observation_space(
