@@ -50,7 +50,7 @@ class Recipe:
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
     # s filmed after each build's success: ending there, a demonstration held a few frames
     # after the last release and the policy held its last brick over the target to the end
-    # (docs/learning.md, "The last release")
+    # (docs/learning.md, "The last release, filmed")
     linger: float = 2.0
     # where each hand goes, from the pick location, its clear pose or its next target: the
     # place is copied from the observation, not regressed (docs/learning.md, "Anchored actions")

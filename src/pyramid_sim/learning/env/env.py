@@ -44,7 +44,8 @@ from .expert import ExpertPolicy
 from .target_spline import spline_ramp
 
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
-       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints", "linger")  # fmt: skip
+       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints",
+       "linger")  # fmt: skip
 
 
 class BuildEnv(gymnasium.Env):

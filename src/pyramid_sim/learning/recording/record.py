@@ -237,7 +237,8 @@ def _check_same_recording(
 ) -> None:
     """ConfigError if `out` holds episodes recorded with other settings (the structure, its
     size and build settings, the frame rate, cameras, image size, variation, randomized
-    parts, first seed, command limits, linger): each shapes the files, and a dataset is one recording."""
+    parts, first seed, command limits, linger): each shapes the files, and a dataset is one
+    recording."""
     wanted = _settings(config)
     for index, rec in sorted(records.items()):
         kept = {**LATER_SETTINGS, **rec.get("config", {})}
