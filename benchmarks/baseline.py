@@ -30,8 +30,17 @@ from pathlib import Path
 from typing import Any
 
 from pyramid_sim.choices import FPS_CHOICES
-from pyramid_sim.cli.args import EXIT_USAGE, Parser, number, one_of, output_path, whole
+from pyramid_sim.cli.args import (
+    EXIT_USAGE,
+    Parser,
+    bounded,
+    number,
+    one_of,
+    output_path,
+    whole,
+)
 from pyramid_sim.errors import PyramidSimError
+from pyramid_sim.params import LINGER
 from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
 
 
@@ -100,7 +109,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     parser.add_argument("--demos", type=whole("demos"), default=None)
     parser.add_argument("--noise", type=number("noise"), default=None,
                         help="DART: rad of joint actions, m of waypoints")  # fmt: skip
-    parser.add_argument("--linger", type=number("linger"), default=None,
+    parser.add_argument("--linger", type=bounded(LINGER), default=None,
                         help="s recorded after each build's success")  # fmt: skip
     parser.add_argument(
         "--action-mode",

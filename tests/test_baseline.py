@@ -73,6 +73,25 @@ def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, ca
     assert not any(tmp_path.iterdir())  # nothing written for any of them
 
 
+def test_the_recipes_linger_reaches_the_recording_and_one_out_of_range_is_refused(
+    tmp_path, monkeypatch, capsys
+):
+    import pyramid_sim
+
+    calls: dict[str, dict] = {}
+    monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
+    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    assert recipe.linger == 2.0  # the last release filmed
+    _, recipe = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
+    baseline.record(tmp_path, recipe)
+    assert calls["record"]["linger"] == 0.5
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "c"), "--linger", "11"])
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and "linger: '11' is out of range; accepted [0, 10]" in err
+    assert not (tmp_path / "c").exists()
+
+
 def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, monkeypatch):
     import pyramid_sim
 

@@ -21,7 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
-from ..params import PARAMS, parse_number, parse_whole
+from ..params import PARAMS, Bound, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT, PRESETS
 from .paths import path_problem
 
@@ -53,6 +53,20 @@ def number(name: str) -> Callable[[str], float]:
             return parse_number(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name}: {text!r} is not a number") from None
+
+    return parse
+
+
+def bounded(bound: Bound) -> Callable[[str], float]:
+    """A flag's number, refused here when outside `bound` (before anything is imported)."""
+
+    def parse(text: str) -> float:
+        value = number(bound.name)(text)
+        if not bound.low <= value <= bound.high:
+            raise argparse.ArgumentTypeError(
+                f"{bound.name}: {text!r} is out of range; accepted {bound.text}"
+            )
+        return value
 
     return parse
 

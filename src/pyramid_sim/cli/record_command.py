@@ -3,20 +3,19 @@
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
 from pathlib import Path
 
 from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_LINGER
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import IMAGE_SIZE_TEXT, LINGER, NOISE, WORKERS, Bound, parse_whole
+from ..params import IMAGE_SIZE_TEXT, LINGER, NOISE, WORKERS, parse_whole
 from .args import (
     add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
-    number,
+    bounded,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
@@ -38,20 +37,6 @@ def image_size(text: str) -> tuple[int, int]:
     if len(parts) != 2:
         raise argparse.ArgumentTypeError(f"image size: {text!r}; accepted N or HxW")
     return parts[0], parts[1]
-
-
-def bounded(bound: Bound) -> Callable[[str], float]:
-    """A flag's number, refused here when outside `bound` (before anything is imported)."""
-
-    def parse(text: str) -> float:
-        value = number(bound.name)(text)
-        if not bound.low <= value <= bound.high:
-            raise argparse.ArgumentTypeError(
-                f"{bound.name}: {text!r} is out of range; accepted {bound.text}"
-            )
-        return value
-
-    return parse
 
 
 def add_record_args(p: argparse.ArgumentParser) -> None:
