@@ -74,9 +74,9 @@ class ToolFeedback:
             miss[:2] = (target.x, target.y) - self.data.xpos[body][:2]
         return miss
 
-    def _read_speed(self, arm: Arm, moved: np.ndarray) -> float:
-        """The tool's speed (m/s) over the control step it `moved`, smoothed where asked (and
-        its miss with it)."""
+    def _measure(self, arm: Arm, moved: np.ndarray) -> float:
+        """The tool's speed (m/s) over the control step it `moved`; where smoothing is asked,
+        its velocity's and its miss's averages updated, and the speed the average's."""
         if not self.smooth_time:
             return float(np.linalg.norm(moved)) / self.dt
         share = min(1.0, self.dt / self.smooth_time)
@@ -114,7 +114,7 @@ class ToolFeedback:
             if runner.current is not self._step[arm]:
                 self._step[arm], self._waited[arm] = runner.current, 0.0
             tool = self.data.site_xpos[self.sites[arm]]
-            speed = self._speed[arm] = self._read_speed(arm, tool - self._was[arm])
+            speed = self._speed[arm] = self._measure(arm, tool - self._was[arm])
             self._was[arm] = tool.copy()
             if runner.current is None or not runner.started or runner.time_left() > 0.0:
                 continue
