@@ -4,7 +4,7 @@ a policy trained on them by lerobot's own `lerobot-train`, and scored by `pyrami
 evaluate` on held-out seeds.
 
     python benchmarks/baseline.py --out DIR [--quick] [--robot R] [--structure S --layers N]
-                                  [--cameras A,B] [--steps N] [--curve N]
+                                  [--cameras A,B --image-size N] [--steps N] [--curve N]
                                   [--action-mode M] [--noise X] [--linger S]
 
 Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
@@ -29,11 +29,12 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from pyramid_sim.choices import FPS_CHOICES
+from pyramid_sim.choices import FPS_CHOICES, RECORD_IMAGE_SIZE
 from pyramid_sim.cli.args import (
     EXIT_USAGE,
     Parser,
     bounded,
+    image_size,
     number,
     one_of,
     output_path,
@@ -54,7 +55,8 @@ class Recipe:
     layers: int = 1
     variation: str = "layout"
     cameras: tuple[str, ...] = ()
-    image_size: int = 224  # record's default: a default recording's checkpoint evaluates as is
+    # record's default: a default recording's checkpoint evaluates as is
+    image_size: tuple[int, int] = RECORD_IMAGE_SIZE
     demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
     # s filmed after each build's success: ending there, a demonstration held a few frames
@@ -105,6 +107,8 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     parser.add_argument("--structure", default="pyramid-even")
     parser.add_argument("--layers", type=whole("layers"), default=1)
     parser.add_argument("--cameras", default="", help="cameras the policy sees (default none)")
+    parser.add_argument("--image-size", type=image_size, default=None,
+                        help="N or HxW: the cameras' images (default record's)")  # fmt: skip
     parser.add_argument("--steps", type=whole("steps"), default=None, help="training steps")
     parser.add_argument("--demos", type=whole("demos"), default=None)
     parser.add_argument("--noise", type=number("noise"), default=None,
@@ -132,7 +136,8 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
         recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
     given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
              "linger": args.linger, "episodes": args.episodes, "action_mode": args.action_mode,
-             "fps": None if args.fps is None else int(args.fps)}  # fmt: skip
+             "fps": None if args.fps is None else int(args.fps),
+             "image_size": args.image_size}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:
@@ -147,7 +152,7 @@ def record(out: Path, recipe: Recipe) -> float:
     pyramid_sim.record(
         out / "demos", recipe.structure, robot=recipe.robot, layers=recipe.layers,
         episodes=recipe.demos, seed=0, cameras=recipe.cameras,
-        image_size=(recipe.image_size, recipe.image_size), variation=recipe.variation,
+        image_size=recipe.image_size, variation=recipe.variation,
         noise=recipe.noise, workers=recipe.workers, action_mode=recipe.action_mode,
         fps=recipe.fps, linger=recipe.linger,
     )  # fmt: skip

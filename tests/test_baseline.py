@@ -110,3 +110,24 @@ def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, mon
     baseline.record(tmp_path, recipe)
     baseline.score(tmp_path / "checkpoint", recipe, 2, None)
     assert calls["record"]["fps"] == 25 and calls["evaluate"]["fps"] == 25
+
+
+def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_refused(
+    tmp_path, monkeypatch, capsys
+):
+    import pyramid_sim
+
+    calls: dict[str, dict] = {}
+    monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
+    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    assert recipe.image_size == (224, 224)  # record's default
+    given = ["--out", str(tmp_path / "b"), "--cameras", "overview", "--image-size", "96"]
+    _, recipe = baseline.parse(given)
+    baseline.record(tmp_path, recipe)
+    assert calls["record"]["image_size"] == (96, 96)
+    assert calls["record"]["cameras"] == ("overview",)
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "c"), "--image-size", "15"])
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and "image size: '15'; accepted even, 16 to 1080" in err
+    assert not (tmp_path / "c").exists()

@@ -252,16 +252,18 @@ def evaluate(
     on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
-    `action_mode` (one of `choices.ACTION_MODES`: as it was trained). `options` as for `build`.
-    Returns the `Evaluation` (its scores as evaluation.json has them)."""
+    `action_mode` (one of `choices.ACTION_MODES`: as it was trained) and a checkpoint seeing
+    the cameras it was trained on. `options` as for `build`. Returns the `Evaluation` (its scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluation.evaluate import EvaluateConfig
+    from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
+    views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
         policy,
         name,
-        {**sizes, "arms": arms, "config": config},
+        {**sizes, **views, "arms": arms, "config": config},
         variation,
         fps,
         episodes,
@@ -272,7 +274,7 @@ def evaluate(
     )
     if video and out is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
-    _prepare_gl(render=bool(video))
+    _prepare_gl(render=bool(video or views))
     from .learning.evaluation.evaluate import evaluate as run
 
     return run(wanted, Path(out) if out is not None else None, on_episode)

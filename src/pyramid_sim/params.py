@@ -183,6 +183,15 @@ IMAGE_WIDTH = Bound("image width", 16, 1920)
 IMAGE_SIZE_TEXT = f"even, {IMAGE_HEIGHT.whole_text} high and {IMAGE_WIDTH.whole_text} wide"
 
 
+def image_size_fits(height: int, width: int) -> bool:
+    """Whether images of `height` x `width` pixels can be rendered: even, within the bounds."""
+    return (
+        IMAGE_HEIGHT.low <= height <= IMAGE_HEIGHT.high
+        and IMAGE_WIDTH.low <= width <= IMAGE_WIDTH.high
+        and height % 2 == width % 2 == 0
+    )
+
+
 def span_text(low: float, high: float, low_open: bool = False) -> str:
     """`[low, high]`, or `(low, high]` when low is refused, numbers written compactly."""
     return f"{'(' if low_open else '['}{low:g}, {high:g}]"

@@ -21,7 +21,7 @@ from ..core.structures import (
     STRUCTURES,
     StructureSpec,
 )
-from ..params import PARAMS, Bound, parse_number, parse_whole
+from ..params import IMAGE_SIZE_TEXT, PARAMS, Bound, image_size_fits, parse_number, parse_whole
 from ..robots import DEFAULT_ROBOT, PRESETS
 from .paths import path_problem
 
@@ -84,6 +84,24 @@ def whole(name: str, accepted: str = "") -> Callable[[str], int]:
             ) from None
 
     return parse
+
+
+def image_size(text: str) -> tuple[int, int]:
+    """`H` (square) or `HxW`, in pixels."""
+    try:
+        parts = [parse_whole(v) for v in text.lower().split("x")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"image size: {text!r} is not a size; accepted N or HxW, {IMAGE_SIZE_TEXT}"
+        ) from None
+    if len(parts) == 1:
+        parts = parts * 2
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"image size: {text!r}; accepted N or HxW")
+    height, width = parts
+    if not image_size_fits(height, width):
+        raise argparse.ArgumentTypeError(f"image size: {text!r}; accepted {IMAGE_SIZE_TEXT}")
+    return height, width
 
 
 def one_of(name: str, options: Sequence[str]) -> Callable[[str], str]:

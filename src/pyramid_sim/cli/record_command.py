@@ -8,7 +8,7 @@ from pathlib import Path
 from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_LINGER
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import IMAGE_SIZE_TEXT, LINGER, NOISE, WORKERS, parse_whole
+from ..params import LINGER, NOISE, WORKERS
 from .args import (
     add_backend_args,
     add_out_args,
@@ -16,27 +16,13 @@ from .args import (
     add_schedule_arg,
     add_structure_args,
     bounded,
+    image_size,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
 from .progress import Progress
 
 CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
-
-
-def image_size(text: str) -> tuple[int, int]:
-    """`H` (square) or `HxW`, in pixels."""
-    try:
-        parts = [parse_whole(v) for v in text.lower().split("x")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"image size: {text!r} is not a size; accepted N or HxW, {IMAGE_SIZE_TEXT}"
-        ) from None
-    if len(parts) == 1:
-        return parts[0], parts[0]
-    if len(parts) != 2:
-        raise argparse.ArgumentTypeError(f"image size: {text!r}; accepted N or HxW")
-    return parts[0], parts[1]
 
 
 def add_record_args(p: argparse.ArgumentParser) -> None:

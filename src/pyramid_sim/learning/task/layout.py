@@ -13,7 +13,7 @@ import numpy as np
 from ...choices import CAMERAS, FPS_CHOICES
 from ...core.poses import yaw_of
 from ...errors import ConfigError
-from ...params import IMAGE_HEIGHT, IMAGE_SIZE_TEXT, IMAGE_WIDTH
+from ...params import IMAGE_SIZE_TEXT, image_size_fits
 from ...physics import names as c
 from ...physics.handles import SceneHandles
 from ...robots import RobotDescription
@@ -140,12 +140,7 @@ def check_image_size(size: tuple[int, int]) -> tuple[int, int]:
     except (TypeError, ValueError):
         height = width = 0
         whole = False
-    if not (
-        whole
-        and IMAGE_HEIGHT.low <= height <= IMAGE_HEIGHT.high
-        and IMAGE_WIDTH.low <= width <= IMAGE_WIDTH.high
-        and height % 2 == width % 2 == 0
-    ):
+    if not (whole and image_size_fits(height, width)):
         raise ConfigError(f"image size: {size!r}; accepted (height, width), {IMAGE_SIZE_TEXT}")
     return height, width
 
