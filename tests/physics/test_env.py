@@ -532,3 +532,28 @@ def test_a_layout_the_expert_cannot_build_is_drawn_again_from_the_seed():
     again = var.draw_layout(100001, "layout", attempt)
     assert again == info["randomization"]["layout"]
     env.close()
+
+
+def test_a_target_whose_brick_is_knocked_out_of_the_tolerances_is_held_no_more():
+    """Success is every target held at once: a brick found in place and then knocked 8 mm
+    away takes its target's reward back and leaves the observation's `placed` flag."""
+    env = gymnasium.make(
+        pyramid_sim.ENV_ID,
+        structure="pyramid-even",
+        layers=1,
+        variation="layout",
+        action_mode="anchored",
+    ).unwrapped
+    env.reset(seed=100_000)
+    while env.placing.count == 0:
+        observation, reward, terminated, truncated, info = env.step(env.expert_action())
+        assert not (terminated or truncated)
+    goal = next(iter(env.placing.placed))
+    q = env.loop.handles.brick_qpos[env.placing.placed[goal]]
+    env.loop.data.qpos[q] += 0.008
+    assert info["bricks_placed"] == 1
+    observation, reward, _, _, info = env.step(env.expert_action())
+    assert reward == -1.0
+    assert env.placing.count == 0 and info["bricks_placed"] == 0
+    assert observation["placed"][goal] == 0.0
+    env.close()

@@ -20,7 +20,9 @@ OFF_TABLE = 0.05  # m below the table top: a brick down there has left it
 
 
 class PlacementWatch:
-    """The targets of a build that hold a brick at rest within the tolerances, found once."""
+    """The targets of a build that hold a brick at rest within the tolerances: found once it
+    comes to rest there, lost again if it is knocked out of them (success is every target
+    held at once, as the build's own judge sees the bricks at its end)."""
 
     def __init__(self, loop: BuildLoop, tolerances: Tolerances = Tolerances()) -> None:
         h = loop.handles  # addresses are the same in every episode's compiled scene
@@ -34,14 +36,16 @@ class PlacementWatch:
         return len(self.placed)
 
     def update(self, loop: BuildLoop) -> int:
-        """How many targets have newly come to hold a brick at rest: the full check only for
-        a resting brick across from a target."""
+        """How many targets have newly come to hold a brick at rest, less those whose brick
+        was moved out of the tolerances: the full check only for a resting brick across from
+        a target, and for each held target's brick."""
         d, h = loop.data, loop.handles
         spawned = loop.spawner.next_slot
         speeds = np.linalg.norm(d.qvel[self._lin_vel[:spawned]], axis=1)
+        lost = self._lost(loop)
         resting = np.flatnonzero(speeds <= REST_SPEED)
         if resting.size == 0:
-            return 0
+            return -lost
         xy = d.qpos[self._xy[resting]]
         near = self.tolerances.xy_mm / 1000.0
         newly = 0
@@ -56,7 +60,20 @@ class PlacementWatch:
                     self.placed[target.index] = int(slot)
                     newly += 1
                     break
-        return newly
+        return newly - lost
+
+    def _lost(self, loop: BuildLoop) -> int:
+        """Forget the targets whose brick has left the tolerances; how many."""
+        d, h, lost = loop.data, loop.handles, 0
+        for index, slot in list(self.placed.items()):
+            q = h.brick_qpos[slot]
+            errors = placement_errors(
+                d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], loop.plan.bricks[index].target.pose
+            )
+            if not within(self.tolerances, *errors):
+                del self.placed[index]
+                lost += 1
+        return lost
 
 
 def episode_failure(loop: BuildLoop, reduce: bool) -> str | None:
