@@ -12,7 +12,7 @@ from pyramid_sim.core.poses import (
     tcp_quaternion,
     yaw_of,
 )
-from pyramid_sim.core.primitives import lift_speed, pick_steps, place_steps
+from pyramid_sim.core.primitives import lift_speed, pick_steps, place_steps, re_place_steps
 from pyramid_sim.core.trajectory import (
     bounded_speed,
     min_jerk,
@@ -164,3 +164,19 @@ def test_quick_lifts_rise_faster_than_the_seeds_but_never_slower():
     quick = pick_steps(spot, motion, carry_to=target, quick_lift=True, **grasp)[-1]
     assert slow.speed == motion.slow_speed and quick.speed > slow.speed
     assert quick.pose == slow.pose
+
+
+def test_a_re_place_picks_where_the_brick_lies_and_places_at_its_target_without_waiting():
+    motion = MotionConfig()
+    lies, target = Pose(0.757, 0.024, 0.11, 0.05), Pose(0.75, 0.02, 0.11, 0.0)
+    grasp = {"grasp_height": 0.012, "yaw_ref": 0.0}
+    steps = re_place_steps(lies, target, motion, **grasp)
+    names = [s.name for s in steps]
+    assert names == ["hover", "approach", "servo", "grip", "retract",
+                     "hover", "servo", "release", "retract"]  # fmt: skip
+    assert steps[2].pose.position == pytest.approx((0.757, 0.024, 0.122))  # at the brick
+    assert steps[2].pose.yaw == pytest.approx(0.05)
+    assert steps[6].pose.x == pytest.approx(0.75) and steps[6].pose.y == pytest.approx(0.02)
+    # already in the shared zone: nothing waits at its edge or for the spawn spot
+    assert not any(s.enters_zone or s.needs_brick for s in steps)
+    assert pick_steps(lies, motion, **grasp)[0].enters_zone  # as a first pick would

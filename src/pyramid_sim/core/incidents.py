@@ -98,6 +98,14 @@ class KnockWatch:
         self.slots.append(slot)
         self.rest = np.vstack([self.rest, position])
 
+    def forget(self, slot: int) -> None:
+        """The brick in `slot` is taken up again (to be set right): no longer watched."""
+        keep = [i for i, s in enumerate(self.slots) if s != slot]
+        self.bodies, self.rest = self.bodies[keep], self.rest[keep]
+        self.bricks = [self.bricks[i] for i in keep]
+        self.slots = [self.slots[i] for i in keep]
+        self.knocked.discard(slot)
+
     def check(self, xpos: np.ndarray, time: float) -> list[Knock]:
         """New knocks, given every body's position now."""
         if self.bodies.size == 0:

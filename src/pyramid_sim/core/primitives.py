@@ -3,6 +3,7 @@
 pick  = hover, approach, servo, grip, retract (approach and retract at half the hover distance,
         as DE NIRO halves it for picking);
 place = hover, servo, release, retract;
+re-place = a pick where a brick let go off its target lies, and its place again;
 clear = move to the arm's outer collision-clear pose.
 """
 
@@ -10,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import Enum
 
 from ..choices import Arm
@@ -115,6 +116,26 @@ def place_steps(
         Step("release", StepKind.RELEASE),
         Step("retract", StepKind.MOVE, up, motion.slow_speed),
     ]
+
+
+def re_place_steps(
+    lies: Pose,
+    target: Pose,
+    motion: MotionConfig,
+    *,
+    grasp_height: float,
+    yaw_ref: float = YAW_REFERENCE,
+    clearance: float = 0.0,
+) -> list[Step]:
+    """Steps that pick a brick let go off its target up again where it `lies` and set it
+    down at `target`: a pick and a place, by an arm already in the shared zone (so no step
+    waits at its edge, nor for the spawn spot)."""
+    pick = pick_steps(
+        lies, motion, target, grasp_height=grasp_height, yaw_ref=yaw_ref, clearance=clearance
+    )
+    place = place_steps(target, motion, grasp_height=grasp_height, yaw_ref=yaw_ref)
+    first_pick = replace(pick[0], enters_zone=False, needs_brick=False)
+    return [first_pick, *pick[1:], replace(place[0], enters_zone=False), *place[1:]]
 
 
 def lift_speed(distance: float, motion: MotionConfig) -> float:

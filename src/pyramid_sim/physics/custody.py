@@ -108,13 +108,22 @@ class BrickCustody:
         return len(self.slot_of) + len(self.lifted - set(self.slot_of.values()))
 
     def gripped(self, arm: Arm, brick: int) -> None:
-        """The arm closed on the brick last offered on the spot, for build-order place
-        `brick`."""
-        slot = self.spawner.offered
-        assert slot is not None
-        self.spawner.taken(slot)
-        self.slot_of[brick] = slot
+        """The arm closed on the brick for build-order place `brick`: the one last offered on
+        the spot, or, taken up again to be set right, the one let go there."""
+        if brick in self.knock_watch.bricks:  # a re-place: no longer watched where it lay
+            slot = self.slot_of[brick]
+            self.knock_watch.forget(slot)
+        else:
+            offered = self.spawner.offered
+            assert offered is not None
+            slot = offered
+            self.spawner.taken(slot)
+            self.slot_of[brick] = slot
         self.carry[arm] = Carry(slot, brick, self.brick_in_tcp(arm, slot).copy())
+
+    def placed(self) -> int:
+        """How many bricks have been let go at their places (each counted once)."""
+        return len(self.knock_watch.bricks)
 
     def released(self, brick: int) -> None:
         """The brick for place `brick` was let go: from now on it is watched for knocks."""

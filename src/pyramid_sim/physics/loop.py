@@ -20,6 +20,7 @@ from . import names as c
 from .hooks import BuildHooks
 from .ik_rate import IKRate
 from .parts import BuildParts, make_parts
+from .re_place import RePlacer
 from .readout import measurements
 from .sag import SagOffset
 from .stops import no_motion_reason, stall_reason, warning_reason
@@ -51,6 +52,7 @@ class BuildLoop:
         # how far each arm is from its move's end: the IK's error, or measured (tool_feedback)
         self.arrival: dict[Arm, Callable[[], float]] = {a: ik.error_of(a) for a in c.ARMS}
         self.feedback: ToolFeedback | None = None  # the expert's loop, once closed
+        self.re_placer: RePlacer | None = None  # and its bricks set right, where asked
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
 
@@ -84,12 +86,10 @@ class BuildLoop:
         self.last_progress = self.data.time
         kind = step.kind
         picking = task is not None and task.action in (Action.PICK, Action.BUILD)
-        if (
-            kind is StepKind.MOVE
-            and step.name == "servo"
-            and picking
-            and not self.custody.carry[arm]
-        ):
+        if self.re_placer is not None:
+            self.re_placer.step_done(arm, step, task)
+        first = task is not None and task.brick not in self.custody.slot_of  # not a re-place
+        if kind is StepKind.MOVE and step.name == "servo" and picking and first:
             if self.spawner.current is not None:  # the fingers are around it: handled now
                 self.custody.reached(self.spawner.current)
         elif kind is StepKind.GRIP:
@@ -98,7 +98,7 @@ class BuildLoop:
         elif kind is StepKind.RELEASE:
             assert task is not None and task.brick is not None
             self.custody.released(task.brick)
-            self.placed += 1
+            self.placed = self.custody.placed()
             if self.hooks.on_placed is not None:
                 self.hooks.on_placed(self.placed)
 

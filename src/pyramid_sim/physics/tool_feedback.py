@@ -16,6 +16,7 @@ import numpy as np
 from ..choices import Arm
 from ..core.poses import Pose, wrap_angle, yaw_of
 from . import names as c
+from .re_place import RePlacer
 
 if TYPE_CHECKING:
     from .loop import BuildLoop
@@ -145,11 +146,15 @@ class ToolFeedback:
         return error
 
 
-def close_loop(loop: BuildLoop, smooth_time: float = 0.0) -> None:
+def close_loop(
+    loop: BuildLoop, smooth_time: float = 0.0, re_place: tuple[float, float] | None = None
+) -> None:
     """Close the expert's loop in `loop` on the measured tool and brick: its moves' ends
     judged and its aim shifted by a `ToolFeedback` (reading over `smooth_time`), its releases
-    letting go at once."""
+    letting go at once; with `re_place` (m across, rad of yaw), a brick let go further off
+    its target set right."""
     loop.feedback = ToolFeedback(loop, smooth_time)
+    loop.re_placer = RePlacer(loop, *re_place) if re_place is not None else None
     loop.ik_rate.aim = loop.feedback.aim
     loop.arrival = {a: loop.feedback.error_of(a) for a in c.ARMS}
     for runner in loop.dispatch.runners.values():

@@ -8,6 +8,7 @@ what to do after a mistake (DART: `record --noise`)."""
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -20,6 +21,10 @@ from .relative_actions import led, relative
 if TYPE_CHECKING:
     from ...physics.loop import BuildLoop
     from .env import BuildEnv
+
+# of each tolerance (across and in yaw) a brick let go may lie off before the expert sets
+# it right (the joint modes): one near the tolerance's edge is out at the next small knock
+RE_PLACE_MARGIN = 0.7
 
 # rad: the most a relative action moves an arm joint, with the motion generator on
 # (relative_actions.led says why; docs/learning.md has the measurements, and why joint
@@ -44,7 +49,8 @@ class ExpertPolicy:
         self._loop = self.env.loop
         if self.env.limit_commands:  # with the motion generator between it and the servos
             joints = self.env.action_mode not in HAND_ACTION_MODES  # a policy's jitter on them
-            close_loop(self._loop, JOINT_SMOOTH_TIME if joints else 0.0)
+            smooth = JOINT_SMOOTH_TIME if joints else 0.0
+            close_loop(self._loop, smooth, re_place_within(self.env) if joints else None)
         self._done = False
         self._asked = -1
         self._last = None
@@ -92,3 +98,13 @@ class ExpertPolicy:
         if not moving and env.action_mode == "ee":  # a waypoint stays where the build ended
             return env.ee.hold(loop).astype(np.float32)
         return hand_action(env.action_mode, env.ee.expert(loop), env.anchors)
+
+
+def re_place_within(env: BuildEnv) -> tuple[float, float]:
+    """How far (m) and how turned (rad) a brick let go may lie before the expert sets it
+    right: a share of the tolerances the environment judges by."""
+    tolerances = env.placing.tolerances
+    return (
+        tolerances.xy_mm / 1000 * RE_PLACE_MARGIN,
+        math.radians(tolerances.yaw_deg) * RE_PLACE_MARGIN,
+    )
