@@ -134,3 +134,20 @@ def test_the_expert_builds_a_drawn_layout_at_the_pairs_scale():
             break
     env.close()
     assert info["is_success"] and info["bricks_placed"] == 6
+
+
+def test_the_anchored_expert_turns_the_right_hand_past_a_half_turn():
+    """The right arm's grasps lean to 135 degrees: at seed 1's turned layout its place wants
+    192 degrees, past the half turn. Kept within the wrapped yaws' extremes, the hand stopped
+    40 degrees short and set its brick turned; kept within the arc its poses span, it builds."""
+    env = BuildEnv("pyramid-even", layers=1, robot="so101", variation="layout",
+                   action_mode="anchored", fps=10)  # fmt: skip
+    env.reset(seed=1)
+    for _ in range(1_000):
+        *_, terminated, truncated, info = env.step(env.expert_action())
+        if terminated or truncated:
+            break
+    result = info["result"]
+    env.close()
+    assert info["is_success"], info["failure"]
+    assert max(b["yaw_error_deg"] for b in result["bricks"]) < 3.0

@@ -35,6 +35,11 @@ def _wrap(angle: float) -> float:
     return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
+def _near(yaw: float, reference: float) -> float:
+    """`yaw` turned by whole turns to within half a turn of `reference` (as it is if it is)."""
+    return yaw if abs(yaw - reference) <= math.pi else reference + _wrap(yaw - reference)
+
+
 class EndEffectorControl:
     """Actions of (dx, dy, dz, dyaw, gripper gap) per arm, left first, moving each arm's
     tool-centre target from where it was aimed the step before, across `steps` control steps
@@ -63,19 +68,25 @@ class EndEffectorControl:
         self.names = tuple(f"{arm}/{f}" for arm in c.ARMS for f in FIELDS)
         self.targets: dict[str, Pose] = {}
         self.box: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        self.yaw_ref: dict[str, float] = {}
 
     def reset(self, loop: BuildLoop) -> None:
         """Aim each arm where its tool centre is; each arm's targets are kept within the box
         (x, y, z, yaw) of every pose the expert's build of this plan goes through, `MARGIN`
         (`TURN_MARGIN`) wider: where the arm works well inside its reach and its wrist's
-        range, whichever way the hand comes."""
+        range, whichever way the hand comes. Yaws are kept within half a turn of the arm's
+        reference yaw: an arm whose grasps cross a half turn (the SO-101 pair's right) has
+        one arc of them, not the circle's rest between their wrapped values."""
         self.targets = {arm: loop.ik.tcp_pose(arm) for arm in c.ARMS}
         poses: dict[str, list[Pose]] = {arm: [self.targets[arm]] for arm in c.ARMS}
         for arm, _, pose in plan_poses(loop.plan, loop.config):
             poses[arm].append(pose)
         self.box = {}
+        robot = loop.config.robot_description
+        self.yaw_ref = {arm: robot.arms[arm].yaw_reference for arm in c.ARMS}
         for side, seen in poses.items():
-            values = np.array([[p.x, p.y, p.z, p.yaw] for p in seen])
+            ref = self.yaw_ref[side]  # yaws as turns from the arm's own: one arc, not its rest
+            values = np.array([[p.x, p.y, p.z, _near(p.yaw, ref)] for p in seen])
             margin = np.array([MARGIN, MARGIN, MARGIN, TURN_MARGIN])
             self.box[side] = (values.min(axis=0) - margin, values.max(axis=0) + margin)
 
@@ -98,6 +109,7 @@ class EndEffectorControl:
                 [tool.x + LEASH, tool.y + LEASH, tool.z + LEASH, np.inf],
             )
             low, high = self.box[arm]
+            aim[3] = _near(aim[3], self.yaw_ref[arm])
             x, y, z, yaw = (float(v) for v in np.clip(aim, low, high))
             self.targets[arm] = Pose(x, y, max(self.floor, z), yaw)
             loop.ik.set_target(arm, self.targets[arm])
