@@ -253,7 +253,8 @@ def evaluate(
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
     `action_mode` (one of `choices.ACTION_MODES`: as it was trained) and a checkpoint seeing
-    the cameras it was trained on. `options` as for `build`. Returns the `Evaluation` (its scores as evaluation.json has them)."""
+    the cameras it was trained on. `options` as for `build`. Returns the `Evaluation` (its
+    scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluation.evaluate import EvaluateConfig
     from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
