@@ -240,7 +240,7 @@ def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
         (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
         (["--cameras", "nose"], "cameras: unknown 'nose'; accepted overview, front"),
         (["--episodes", "0"], "episodes: 0 is out of range; accepted 1 to 100000"),
-        (["--image-size", "15"], "image size: (15, 15); accepted (height, width), even"),
+        (["--image-size", "15"], "image size: '15'; accepted even, 16 to 1080 high"),
         (["--episodes", "2", "--variation", "fixed"], "would all be the same"),
         (["--workers", "0"], "workers: 0 is out of range; accepted 1 to 64"),
         (["--backend", "slurm"], "backend: unknown 'slurm'; accepted process, ray"),
