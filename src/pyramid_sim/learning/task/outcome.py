@@ -29,6 +29,8 @@ class PlacementWatch:
         self.tolerances = tolerances
         self._lin_vel = np.array([[v, v + 1, v + 2] for v in h.brick_dofs])
         self._xy = brick_index(h)[:, :2]
+        self._pose_q = np.array([np.arange(q, q + 7) for q in h.brick_qpos])  # each slot's
+        self._checked = np.zeros((len(h.brick_qpos), 7))  # its pose when last found in place
         self.placed: dict[int, int] = {}  # build-order index -> slot of the brick resting there
 
     @property
@@ -58,19 +60,28 @@ class PlacementWatch:
                 errors = placement_errors(d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], pose)
                 if within(self.tolerances, *errors):
                     self.placed[target.index] = int(slot)
+                    self._checked[slot] = d.qpos[self._pose_q[slot]]
                     newly += 1
                     break
         return newly - lost
 
     def _lost(self, loop: BuildLoop) -> int:
-        """Forget the targets whose brick has left the tolerances; how many."""
-        d, h, lost = loop.data, loop.handles, 0
-        for index, slot in list(self.placed.items()):
-            q = h.brick_qpos[slot]
-            errors = placement_errors(
-                d.qpos[q : q + 3], d.qpos[q + 3 : q + 7], loop.plan.bricks[index].target.pose
-            )
-            if not within(self.tolerances, *errors):
+        """Forget the targets whose brick has left the tolerances; how many. Only a brick
+        whose pose changed since it was last found in place is judged again: this runs every
+        control step, and a resting brick (most of a structure) has not moved at all."""
+        if not self.placed:
+            return 0
+        d, lost = loop.data, 0
+        slots = np.fromiter(self.placed.values(), dtype=int)
+        now = d.qpos[self._pose_q[slots]]
+        moved = np.any(now != self._checked[slots], axis=1)
+        indices = list(self.placed)
+        for k in np.flatnonzero(moved):
+            index, slot = indices[k], slots[k]
+            pose = loop.plan.bricks[index].target.pose
+            if within(self.tolerances, *placement_errors(now[k, :3], now[k, 3:], pose)):
+                self._checked[slot] = now[k]
+            else:
                 del self.placed[index]
                 lost += 1
         return lost
