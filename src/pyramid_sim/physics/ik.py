@@ -26,7 +26,6 @@ from .ik_terms import (
     frame_task,
     guarded_pairs,
     joint_ranges,
-    posture_costs,
     velocity_bounds,
     velocity_change,
 )
@@ -56,9 +55,7 @@ class DualArmIK:
         self.tasks = {arm: frame_task(arms[arm].tcp_site) for arm in c.ARMS}
         # The same gain, so frame and posture tasks balance where they did at gain 1.
         cost = robot.posture_cost if posture_cost is None else posture_cost
-        self.posture = mink.PostureTask(
-            self.model, cost=posture_costs(self.model, robot, cost), gain=FRAME_GAIN
-        )
+        self.posture = mink.PostureTask(self.model, cost=cost, gain=FRAME_GAIN)
         position_limit = mink.ConfigurationLimit(self.model)
         velocity_limit = velocity_bounds(self.model, robot)
         # Collision safety beyond the scheduler: the QP will not close the gap between the

@@ -56,16 +56,6 @@ def frame_task(site: str) -> mink.FrameTask:
     )
 
 
-def posture_costs(model: mujoco.MjModel, robot: RobotDescription, cost: float) -> np.ndarray:
-    """The posture task's cost per dof: `cost`, times each arm joint's posture weight."""
-    costs = np.full(model.nv, cost)
-    for arm in c.ARMS:
-        weights = robot.arms[arm].posture_weights
-        if weights:
-            costs[dof_addresses(model, robot.arms[arm].joints)] *= weights
-    return costs
-
-
 def velocity_bounds(model: mujoco.MjModel, robot: RobotDescription) -> mink.VelocityLimit:
     """The arm joints' velocity limits with a margin under the real ones: the servos overshoot
     the IK's velocity a little."""

@@ -40,8 +40,6 @@ class ArmDescription:
     gripper_actuator: str
     yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
     # and the clear pose this yaw, so the last wrist joint stays inside its range
-    posture_weights: tuple[float, ...] = ()  # the IK's pull towards home per joint, in units
-    # of the robot's posture_cost (empty: 1 each): a redundant arm's twist held near home
 
     @property
     def wrist_camera(self) -> str:
@@ -60,8 +58,6 @@ class ArmDescription:
         ):
             if len(getattr(self, name)) != n:
                 raise ValueError(f"{name}: {len(getattr(self, name))} values for {n} joints")
-        if self.posture_weights and len(self.posture_weights) != n:
-            raise ValueError(f"posture_weights: {len(self.posture_weights)} values for {n} joints")
 
 
 @dataclass(frozen=True)

@@ -16,10 +16,6 @@ KP = (4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0)
 # wrist, whose 12 N m cannot turn the hand at the IK's speed against 10.
 DAMPING = (10.0, 10.0, 10.0, 10.0, 2.0, 2.0, 2.0)
 HOME = (0.0, -0.3, 0.0, -2.2, 0.0, 1.9, 0.785)
-# Joint 3 (the upper arm's roll) is the one a 7-joint arm has to spare: pulled towards home ten
-# times harder, the arm cannot drift to a twisted shoulder whose null space swings the hand
-# on the way down (docs/learning.md).
-POSTURE_WEIGHTS = (1.0, 1.0, 10.0, 1.0, 1.0, 1.0, 1.0)
 BASES = {"left": (0.15, 0.25, 0.0), "right": (0.15, -0.25, 0.0)}
 HAND = "panda_hand"
 FINGERS = ("panda_leftfinger", "panda_rightfinger")
@@ -38,7 +34,6 @@ def _arm(arm: Arm) -> ArmDescription:
         kp=KP,
         damping=DAMPING,
         home=HOME,
-        posture_weights=POSTURE_WEIGHTS,
         base=BASES[arm],
         root_body=name("panda_link0"),
         tcp_site=name("tcp"),
