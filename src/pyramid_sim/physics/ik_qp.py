@@ -51,6 +51,7 @@ class IKProblem:
         ]
         self._H0 = sum((wj.T @ wj for _, wj in self._postures), np.zeros((nv, nv)))
         self._H0.flat[:: nv + 1] += damping
+        self._extra = np.zeros((nv, nv))  # set_extra_damping's
         self._position = position_limit
         # mink bounds each listed dof: -dt v_max <= dq <= dt v_max.
         self.dt = dt
@@ -74,6 +75,12 @@ class IKProblem:
         self._frames = FrameResiduals(configuration, [t for t in moving if plain_frame_task(t)])
         self._frame_rows = [r for r, f in zip(rows, frame) if f]
         self._others = [(t, r) for t, r, f in zip(moving, rows, frame) if not f]
+
+    def set_extra_damping(self, damping: np.ndarray) -> None:
+        """A damping term `dq' damping dq` in the objective beside the uniform one (in place
+        of any set before)."""
+        self._H0 += damping - self._extra
+        self._extra = damping.copy()
 
     def objective(self) -> tuple[np.ndarray, np.ndarray]:
         """(H, c) of `1/2 dq'H dq + c'dq`: the tasks' weighted residuals stacked, plus the

@@ -40,6 +40,8 @@ class ArmDescription:
     gripper_actuator: str
     yaw_reference: float = 0.0  # rad: grasps take the hand yaw nearer this of the two that fit,
     # and the clear pose this yaw, so the last wrist joint stays inside its range
+    twist_pair: tuple[int, int] | None = None  # two joints (0-based) whose axes line up when
+    # the shoulder stands upright: the expert's IK damps their turn against each other
 
     @property
     def wrist_camera(self) -> str:
@@ -58,6 +60,8 @@ class ArmDescription:
         ):
             if len(getattr(self, name)) != n:
                 raise ValueError(f"{name}: {len(getattr(self, name))} values for {n} joints")
+        if self.twist_pair is not None and not all(0 <= i < n for i in self.twist_pair):
+            raise ValueError(f"twist_pair: {self.twist_pair}; accepted joints 0-{n - 1}")
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,7 @@ def _arm(arm: Arm) -> ArmDescription:
         kp=KP,
         damping=DAMPING,
         home=HOME,
+        twist_pair=(0, 2),  # joints 1 and 3, in line when joint 2 stands at 0
         base=BASES[arm],
         root_body=name("panda_link0"),
         tcp_site=name("tcp"),

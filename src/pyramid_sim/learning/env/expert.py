@@ -15,6 +15,7 @@ import numpy as np
 
 from ...choices import HAND_ACTION_MODES
 from ...physics.tool_feedback import JOINT_SMOOTH_TIME, close_loop, take_over
+from ...physics.twist_damping import damp_twist
 from .anchored_actions import hand_action
 from .relative_actions import led, relative
 
@@ -51,6 +52,8 @@ class ExpertPolicy:
             joints = self.env.action_mode not in HAND_ACTION_MODES  # a policy's jitter on them
             smooth = JOINT_SMOOTH_TIME if joints else 0.0
             close_loop(self._loop, smooth, re_place_within(self.env) if joints else None)
+            if joints:  # lagged unequally, a twist swings the hand (physics/twist_damping)
+                damp_twist(self._loop.ik)
         self._done = False
         self._asked = -1
         self._last = None
