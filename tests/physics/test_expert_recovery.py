@@ -56,13 +56,14 @@ def test_white_noise_on_the_joint_targets_still_builds():
 
 def test_without_the_joint_modes_filtering_white_noise_sets_a_brick_off(monkeypatch):
     """The generator's jerk and the expert's reading as the hand modes have them (and no
-    re-place): a brick lands more than the 5 mm tolerance off, and the episode reaches its
-    step limit."""
+    re-place, no twist damping): a brick lands more than the 5 mm tolerance off, and the
+    episode reaches its step limit."""
     from pyramid_sim.learning.env import action_modes, expert
 
     monkeypatch.setattr(action_modes, "JOINT_JERK_TIME", action_modes.JERK_TIME)
     monkeypatch.setattr(expert, "JOINT_SMOOTH_TIME", 0.0)
     monkeypatch.setattr(expert, "re_place_within", lambda env: None)
+    monkeypatch.setattr(expert, "damp_twist", lambda ik: None)
     env = gymnasium.make(ENV, **TASK).unwrapped
     info = _noisy_episode(env, 100_004)
     assert not info["is_success"] and info["bricks_placed"] == 1
