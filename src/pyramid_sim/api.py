@@ -228,7 +228,8 @@ def record(
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
-                     "action_mode", "on_episode", "arms")  # fmt: skip
+                     "action_mode", "workers", "backend", "ray_address", "on_episode",
+                     "arms")  # fmt: skip
 
 
 def evaluate(
@@ -244,6 +245,9 @@ def evaluate(
     video: int = 0,
     max_steps: int | None = None,
     action_mode: str = "joint",
+    workers: int = 1,
+    backend: str = "process",
+    ray_address: str | None = None,
     on_episode: Any = None,
     config: SimConfig | None = None,
     **options: Any,
@@ -253,8 +257,10 @@ def evaluate(
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
     `action_mode` (one of `choices.ACTION_MODES`: as it was trained) and a checkpoint seeing
-    the cameras it was trained on. `options` as for `build`. Returns the `Evaluation` (its
-    scores as evaluation.json has them)."""
+    the cameras it was trained on; `workers` episodes at once, in processes or as Ray tasks
+    (`backend="ray"`, on the cluster at `ray_address` or a Ray started here), scoring as one
+    worker does. `options` as for `build`. Returns the `Evaluation` (its scores as
+    evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluation.evaluate import EvaluateConfig
     from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
@@ -272,6 +278,9 @@ def evaluate(
         video,
         max_steps,
         action_mode,
+        workers,
+        backend,
+        ray_address,
     )
     if video and out is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")

@@ -5,6 +5,9 @@ matches what `record` writes."""
 
 import json
 import os
+import subprocess
+import sys
+import tempfile
 
 import av
 import gymnasium
@@ -229,3 +232,83 @@ def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
             break
     assert truncated and steps == 10 and "is_success" in info_
     env.close()
+
+
+def _scored(evaluation):
+    """An evaluation's scores as another run must give them: every row but its wall time,
+    and the inputs but how the episodes were spread."""
+    scores = json.loads(json.dumps(evaluation.scores))
+    for row in scores["rows"]:
+        del row["wall_time_s"]
+    for name in ("workers", "backend", "ray_address"):
+        del scores["inputs"][name]
+    return scores
+
+
+@pytest.mark.processes
+def test_episodes_split_across_workers_score_as_one_worker_does(tmp_path):
+    """Ten episodes of a policy whose episodes differ (random actions, each episode its
+    seed's) on two workers: the same rows, in seed order, and the same scores as one
+    worker's, bit for bit; the first episode's film written by the evaluation's process."""
+    task = dict(episodes=10, max_steps=30, fps=10, video=1, **TASK)
+    alone = pyramid_sim.evaluate("random", "pyramid-even", out=tmp_path / "one", **task)
+    split = pyramid_sim.evaluate("random", "pyramid-even", workers=2, out=tmp_path / "two", **task)
+    assert [r["seed"] for r in split.scores["rows"]] == list(range(100_000, 100_010))
+    assert len({r["command_lag"] for r in alone.scores["rows"]}) == 10  # every episode its own
+    assert _scored(split) == _scored(alone)
+    assert split.scores["inputs"]["workers"] == 2
+    with av.open(str(tmp_path / "two" / "episode_100000.mp4")) as film:
+        assert sum(1 for _ in film.decode(video=0)) == split.scores["rows"][0]["steps"]
+    files = sorted(p.name for p in (tmp_path / "two").iterdir())
+    assert files == ["episode_100000.mp4", "evaluation.json"]
+
+
+@pytest.mark.processes
+def test_a_policy_that_fails_in_a_worker_is_named_in_one_line(tmp_path):
+    with pytest.raises(pyramid_sim.errors.PolicyError, match=r"episode \d+ of 4 \(seed 10000\d\)"):
+        pyramid_sim.evaluate(
+            "tests.physics.test_evaluate:_fails_at_the_third_step",
+            "pyramid-even",
+            episodes=4,
+            workers=2,
+            out=tmp_path / "e",
+            **TASK,
+        )
+    assert not (tmp_path / "e" / "evaluation.json").exists()
+
+
+def _fails_at_the_third_step(env):
+    steps = iter(range(10**6))
+
+    def act(observation):
+        if next(steps) == 2:
+            raise ValueError("no action")
+        return env.unwrapped.held_command()
+
+    return act
+
+
+@pytest.mark.slow  # starts a local Ray instance
+@pytest.mark.xdist_group("ray")  # one Ray at a time under pytest-xdist (.ci/run)
+def test_episodes_as_ray_tasks_score_as_one_worker_does(tmp_path):
+    """`evaluate --backend ray`: the episodes as Ray tasks on a Ray started here (its token
+    under this test's HOME, its session under a short RAY_TMPDIR), scored as here."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("RAY_")}
+    env.update(HOME=str(tmp_path / "home"), RAY_USAGE_STATS_ENABLED="0")
+    argv = ["evaluate", "--policy", "random", "--structure", "pyramid-even", "--layers", "1"]
+    argv += ["--episodes", "4", "--max-steps", "30", "--fps", "10", "--quiet"]
+    with tempfile.TemporaryDirectory(prefix="ray", dir="/tmp") as ray_tmp:
+        env["RAY_TMPDIR"] = ray_tmp
+        for name, extra in (("one", []), ("ray", ["--workers", "2", "--backend", "ray"])):
+            done = subprocess.run(
+                [sys.executable, "-m", "pyramid_sim.cli", *argv, *extra, "--out",
+                 str(tmp_path / name)],
+                capture_output=True, text=True, timeout=600, env=env,
+            )  # fmt: skip
+            assert done.returncode == 0, done.stderr
+    one, ray = (json.loads((tmp_path / n / "evaluation.json").read_text()) for n in ("one", "ray"))
+    for doc in (one, ray):
+        for row in doc["rows"]:
+            del row["wall_time_s"]
+    assert ray["rows"] == one["rows"] and ray["successes"] == one["successes"]
+    assert ray["inputs"]["backend"] == "ray"

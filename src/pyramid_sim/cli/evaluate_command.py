@@ -8,8 +8,9 @@ from pathlib import Path
 from ..choices import ACTION_MODES, EVAL_FIRST_SEED
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import MAX_STEPS
+from ..params import MAX_STEPS, WORKERS
 from .args import (
+    add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
@@ -50,6 +51,14 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         metavar="N",
         help="film the first N episodes from the overview camera, DIR/episode_<seed>.mp4",
     )
+    p.add_argument(
+        "--workers",
+        type=whole("workers", WORKERS.whole_text),
+        default=1,
+        help="episodes run at once, each in a process or a Ray task with its own environment "
+        "and policy; the scores are one worker's (default 1)",
+    )
+    add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/evaluation"))
 
 
@@ -76,6 +85,9 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             seed=config.seed,
             video=args.video,
             max_steps=args.max_steps,
+            workers=args.workers,
+            backend=args.backend,
+            ray_address=args.ray_address,
             on_episode=lambda row: progress.advance(),
             config=config,
             **sizes,

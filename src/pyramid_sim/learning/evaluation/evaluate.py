@@ -2,13 +2,17 @@
 every peer. Episode i is `reset(seed=first_seed + i)`; evaluation seeds start at EVAL_SEED
 (100000) by default, recordings at 0, so the two never overlap for recordings of fewer than
 100000 episodes (`record` takes at most that many). `evaluation.json` holds the scores, the
-inputs and versions, and one row an episode."""
+inputs and versions, and one row an episode. With `workers` (or Ray), the episodes are split
+across worker processes (or Ray tasks), each with its own environment and policy: an episode
+depends on its seed alone, so the scores are those of one worker, bit for bit."""
 
 from __future__ import annotations
 
 import platform
+import tempfile
 import time
 from collections.abc import Callable
+from contextlib import closing
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -18,9 +22,11 @@ from gymnasium.wrappers import TimeLimit
 
 from ...choices import EVAL_FIRST_SEED
 from ...config import MotionConfig
-from ...errors import ActionError, ConfigError, PolicyError
+from ...errors import ActionError, ConfigError, PolicyError, PyramidSimError
+from ...jobs.backends import check_backend
+from ...jobs.runner import run_jobs
 from ...output.files import atomic_path, write_json_atomic
-from ...params import EPISODES, MAX_STEPS
+from ...params import EPISODES, MAX_STEPS, WORKERS
 from ...version import __version__
 from ..env.env import BuildEnv
 from ..recording.episode import step_limit
@@ -53,9 +59,14 @@ class EvaluateConfig:
     videos: int = 0  # the first episodes filmed from the overview camera
     max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
     action_mode: str = "joint"  # the policy's: one of choices.ACTION_MODES
+    workers: int = 1  # episodes run at once, each worker with its environment and policy
+    backend: str = "process"  # or ray: the episodes as Ray tasks
+    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
+        WORKERS.check_whole(self.workers)
+        check_backend(self.backend, self.ray_address)
         check_level(self.variation)
         control_steps(self.fps, MotionConfig().control_dt)
         check_seed(self.first_seed)
@@ -138,13 +149,8 @@ def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str,
     }
 
 
-def evaluate(
-    config: EvaluateConfig,
-    out: Path | None = None,
-    on_episode: Callable[[dict[str, Any]], Any] | None = None,
-) -> Evaluation:
-    """Run the evaluation; with `out`, write `out/evaluation.json` (and the films,
-    `out/episode_<seed>.mp4`)."""
+def make_env(config: EvaluateConfig) -> Any:
+    """The environment an evaluation's episodes run in, cut at its step limit."""
     built = BuildEnv(
         config.structure,
         variation=config.variation,
@@ -154,14 +160,28 @@ def evaluate(
         **config.options,
     )
     limit = config.max_steps or step_limit(len(built.plan.bricks), config.fps)
-    env = TimeLimit(built, max_episode_steps=limit)
-    policy = make_policy(config.policy, env)
-    rows = []
+    return TimeLimit(built, max_episode_steps=limit)
+
+
+def evaluate(
+    config: EvaluateConfig,
+    out: Path | None = None,
+    on_episode: Callable[[dict[str, Any]], Any] | None = None,
+) -> Evaluation:
+    """Run the evaluation; with `out`, write `out/evaluation.json` (and the films,
+    `out/episode_<seed>.mp4`)."""
+    env = make_env(config)
+    built, limit = env.unwrapped, env._max_episode_steps
     try:
-        for i in range(config.episodes):
-            rows.append(_episode(env, policy, config, i, out))
-            if on_episode is not None:
-                on_episode(rows[-1])
+        policy = make_policy(config.policy, env)  # a bad policy refused before any worker
+        if config.workers > 1 or config.backend == "ray":
+            rows = _run_away(config, out, on_episode)
+        else:
+            rows = []
+            for i in range(config.episodes):
+                rows.append(_episode(env, policy, config, i, out))
+                if on_episode is not None:
+                    on_episode(rows[-1])
     finally:
         env.close()
     scores = {
@@ -195,13 +215,87 @@ def evaluate(
     return Evaluation(path, scores)
 
 
-def _episode(env: Any, policy: Any, config: EvaluateConfig, i: int, out: Path | None) -> dict:
-    """Episode `i`'s row, filmed if among the first `videos`; a PolicyError names the policy,
-    the episode and its seed (the user's code: one line, and no evaluation.json)."""
+_WORKER: dict[str, Any] = {}  # this worker process's evaluation, environment and policy
+
+
+@dataclass(frozen=True)
+class _EpisodeAway:
+    """One episode run in a worker process or a Ray task: its row, and its film's bytes where
+    it is among the first filmed (the evaluation's machine writes the file, so a Ray node
+    needs no disk shared with it). A policy's error is handed back, not raised: it is the
+    user's, and is said in one line."""
+
+    config: EvaluateConfig
+
+    def __call__(self, i: int) -> dict[str, Any]:
+        if _WORKER.get("config") != self.config:
+            if "env" in _WORKER:
+                _WORKER.pop("env").close()
+            env = make_env(self.config)
+            _WORKER.update(config=self.config, env=env, policy=make_policy(self.config.policy, env))
+        env, policy = _WORKER["env"], _WORKER["policy"]
+        try:
+            if i < self.config.videos:
+                with tempfile.TemporaryDirectory(prefix="pyramid-sim-film-") as tmp:
+                    film = Path(tmp) / "episode.mp4"
+                    row = _episode(env, policy, self.config, i, None, film)
+                    return {"row": row, "film": film.read_bytes()}
+            return {"row": _episode(env, policy, self.config, i, None)}
+        except PolicyError as err:
+            return {"policy_error": str(err)}
+
+
+def _run_away(
+    config: EvaluateConfig, out: Path | None, on_episode: Callable[[dict[str, Any]], Any] | None
+) -> list[dict[str, Any]]:
+    """The episodes' rows in seed order, run by the job runner on `config.workers` processes
+    or Ray tasks; `on_episode` hears each as it ends. A worker's crash or a policy's error
+    stops the evaluation (PyramidSimError, PolicyError), its films unwritten."""
+    ends = run_jobs(
+        _EpisodeAway(config),
+        range(config.episodes),
+        workers=config.workers,
+        backend=config.backend,
+        address=config.ray_address,
+        warm=("pyramid_sim.learning.evaluation.evaluate",),
+    )
+    done: dict[int, dict[str, Any]] = {}
+    with closing(ends):  # an interrupt, or a failure, stops every worker at once
+        for end in ends:
+            if end.failure is not None:
+                seed = config.first_seed + end.job
+                raise PyramidSimError(f"episode {end.job + 1} (seed {seed}): {end.failure}")
+            if "policy_error" in end.value:
+                raise PolicyError(end.value["policy_error"])
+            done[end.job] = end.value
+            if on_episode is not None:
+                on_episode(end.value["row"])
+    if out is not None:
+        for i, value in sorted(done.items()):
+            if "film" in value:
+                seed = config.first_seed + i
+                with atomic_path(out / f"episode_{seed}.mp4") as tmp:
+                    tmp.write_bytes(value["film"])
+    return [done[i]["row"] for i in range(config.episodes)]
+
+
+def _episode(
+    env: Any,
+    policy: Any,
+    config: EvaluateConfig,
+    i: int,
+    out: Path | None,
+    film: Path | None = None,
+) -> dict:
+    """Episode `i`'s row, filmed if among the first `videos` (into `out`, or the file
+    `film`); a PolicyError names the policy, the episode and its seed (the user's code: one
+    line, and no evaluation.json)."""
     seed = config.first_seed + i
+    if film is None and out is not None and i < config.videos:
+        film = out / f"episode_{seed}.mp4"
     try:
-        if i < config.videos and out is not None:
-            return _filmed(env, policy, seed, out / f"episode_{seed}.mp4", config.fps)
+        if film is not None:
+            return _filmed(env, policy, seed, film, config.fps)
         return run_episode(env, policy, seed)
     except PolicyError as err:
         raise PolicyError(
