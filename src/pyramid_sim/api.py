@@ -173,7 +173,7 @@ def _prepare_gl(render: bool) -> None:
 # record's own keywords: not settings of the build
 RECORD_KEYWORDS = ("episodes", "seed", "fps", "cameras", "image_size", "variation", "randomize",
                    "workers", "backend", "ray_address", "noise", "linger", "action_mode",
-                   "on_frame", "on_episode", "arms")  # fmt: skip
+                   "policy", "beta", "on_frame", "on_episode", "arms")  # fmt: skip
 
 
 def record(
@@ -194,6 +194,8 @@ def record(
     noise: float = 0.0,
     linger: float = RECORD_LINGER,
     action_mode: str = "joint",
+    policy: str | None = None,
+    beta: float = 0.5,
     on_frame: Any = None,
     on_episode: Any = None,
     config: SimConfig | None = None,
@@ -207,7 +209,11 @@ def record(
     started here). With `noise` (rad), what is executed is the expert's joint targets plus an
     offset drawn each second, the label the expert's, planned from where the arm is (DART); a
     build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
-    action as its change from the frame's state. Episodes already in `out` are kept.
+    action as its change from the frame's state. With `policy` (as `evaluate` takes one: a
+    lerobot checkpoint folder, zero, random, module:factory), a DAgger round: the policy
+    drives each 2 s span the expert does not (the expert drives a share `beta` of them) and
+    every frame is labelled by the expert; such rounds may add episodes to one dataset.
+    Episodes already in `out` are kept.
     `on_frame(episode, its frames so far)` hears each frame (with workers, an episode's all at
     once), `on_episode(episodes in the dataset)` the count before the first is filmed and after
     each lands. `options` as for `build`."""
@@ -220,11 +226,12 @@ def record(
     settings_ = RecordConfig(
         name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, tuple(cameras),
         size, variation, tuple(randomize), True, workers, backend, ray_address, noise,
-        action_mode, linger,
+        action_mode, linger, policy, beta,
     )  # fmt: skip
     _prepare_gl(render=bool(cameras))
+    from .learning.evaluation.policies import make_policy
 
-    return run(Path(out), settings_, on_frame, on_episode)
+    return run(Path(out), settings_, on_frame, on_episode, make_policy)
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",

@@ -8,7 +8,7 @@ from pathlib import Path
 from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_LINGER
 from ..output.files import removed_if_failed
 from ..output.lock import holding
-from ..params import LINGER, NOISE, WORKERS
+from ..params import BETA, LINGER, NOISE, WORKERS
 from .args import (
     add_backend_args,
     add_out_args,
@@ -79,6 +79,23 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         help="seconds an episode that built goes on being filmed: the last release and the "
         f"hands leaving, taught as the first; {LINGER.text} (default {RECORD_LINGER:g})",
     )
+    p.add_argument(
+        "--policy",
+        default=None,
+        metavar="POLICY",
+        help="DAgger: a policy (a lerobot checkpoint folder, or as evaluate takes one) drives "
+        "the arms in the 2 s spans the expert does not, and the expert labels every frame; "
+        "a round's episodes may be added to the dataset its policy was trained on "
+        "(default none: the expert drives)",
+    )
+    p.add_argument(
+        "--beta",
+        type=bounded(BETA),
+        default=0.5,
+        metavar="SHARE",
+        help=f"with --policy, DAgger's beta: the share of spans the expert drives; {BETA.text} "
+        "(default 0.5)",
+    )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
@@ -125,6 +142,8 @@ def cmd_record(args: argparse.Namespace) -> int:
             noise=args.noise,
             linger=args.linger,
             action_mode=args.action_mode,
+            policy=args.policy,
+            beta=args.beta,
             config=config,
             **sizes,
         )

@@ -12,10 +12,12 @@ from typing import Any
 import numpy as np
 
 from ...choices import WAYPOINT_MODES
+from ...errors import ActionError, PolicyError
 from ..env.action_modes import moved_entries
 from ..env.anchored_actions import hand_action, waypoint_action
 from ..env.env import BuildEnv
 from ..task.spaces import environment_state
+from .dagger import Mixer
 from .lead_labels import LeadLabels
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
@@ -65,6 +67,7 @@ class EpisodeEnd:
     success: bool
     failure: str | None
     result: dict[str, Any]
+    learner_steps: int = 0  # steps a learner drove (DAgger: dagger.py)
 
 
 def _doing(env: BuildEnv) -> tuple[tuple[int, int], tuple[int, int]]:
@@ -119,14 +122,17 @@ def expert_episode(
     cameras: tuple[str, ...],
     on_frame: Callable[[Frame], Any],
     noise: float = 0.0,
+    mixer: Mixer | None = None,
 ) -> EpisodeEnd:
     """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame each
     environment step (the environment steps at the dataset's rate), at most `step_limit`
     frames, as an evaluation's (and the environment's `linger` after a success); the last is
     done. With
     `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
-    action is still the expert's: what to do from where the arm really is. Waypoint labels
-    are led past a move's end (lead_labels.py)."""
+    action is still the expert's: what to do from where the arm really is. With a `mixer`
+    (DAgger), a learner drives some spans and the expert labels what it reaches (a learner's
+    bad action raises PolicyError). Waypoint labels are led past a move's end
+    (lead_labels.py)."""
     led = LeadLabels(env.fps, on_frame, (PRIMITIVES.index("grip"), PRIMITIVES.index("release")))
     obs, _ = env.reset(seed=seed)
     executed = JointNoise(env, seed, noise)
@@ -140,7 +146,13 @@ def expert_episode(
         environment = environment_state(obs)
         images = env.images(cameras) if cameras else {}
         hands = obs["tools"][:, :3].copy()
-        obs, reward, terminated, truncated, info = env.step(executed(action))
+        done_now = executed(action)
+        if mixer is not None:
+            done_now = mixer(obs, done_now)
+        try:
+            obs, reward, terminated, truncated, info = env.step(done_now)
+        except ActionError as err:  # only a learner's action can be outside the space
+            raise PolicyError(f"policy: act() gave an {err}") from err
         truncated = truncated or frames + 1 >= limit
         done = terminated or truncated
         frame = Frame(
@@ -163,4 +175,5 @@ def expert_episode(
         frames += 1
         if done:
             failure = info["failure"] or (None if terminated else f"step limit: {limit} steps")
-            return EpisodeEnd(frames, info["is_success"], failure, info["result"])
+            learner = mixer.learner_steps if mixer is not None else 0
+            return EpisodeEnd(frames, info["is_success"], failure, info["result"], learner)

@@ -13,9 +13,14 @@ from typing import Any
 from ..dataset import lerobot_format as fmt
 from ..env.env import BuildEnv
 from ..task.observation_names import environment_names
+from .dagger import Mixer
 from .episode import Frame, expert_episode
 from .record_config import RecordConfig
 from .staging import staging_folder
+
+# What makes a DAgger round's learner for an environment from its `--policy` text (the
+# evaluation's policy maker, handed down by whoever records: recording sits below it)
+PolicyMaker = Callable[[str, Any], Any]
 
 
 def make_env(config: RecordConfig) -> BuildEnv:
@@ -79,13 +84,14 @@ def film_staged(
     episode: int,
     out: Path,
     on_frame: Callable[[int, int], Any] | None = None,
+    learner: Any = None,
 ) -> dict[str, Any]:
-    """Film one episode into its staging folder under `out`: how it ended, its draw and its
-    row (frames indexed from 0)."""
+    """Film one episode into its staging folder under `out` (with a `learner`, DAgger's
+    round: dagger.py): how it ended, its draw and its row (frames indexed from 0)."""
     root = staging_folder(out, episode)
     shutil.rmtree(root, ignore_errors=True)
     files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
-    end, row = film_episode(env, files, config, on_frame)
+    end, row = film_episode(env, files, config, on_frame, learner)
     files.commit()  # into the staging folder: the dataset sees nothing yet
     return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
 
@@ -95,17 +101,31 @@ _WORKER_ENV: dict[str, Any] = {}  # this process's environment and the recording
 
 @dataclass(frozen=True)
 class FilmAway:
-    """An episode filmed in a worker process or a Ray task, its environment made once per
-    process (picklable: the stager hands it to the job runner)."""
+    """An episode filmed in a worker process or a Ray task, its environment (and a DAgger
+    round's learner, made by `policies`) made once per process (picklable: the stager hands
+    it to the job runner)."""
 
     config: RecordConfig
+    policies: PolicyMaker | None = None
 
     def __call__(self, episode: int, out: Path) -> dict[str, Any]:
         if _WORKER_ENV.get("config") != self.config:  # a Ray worker may serve two recordings
             if "env" in _WORKER_ENV:
                 _WORKER_ENV.pop("env").close()
-            _WORKER_ENV["env"], _WORKER_ENV["config"] = make_env(self.config), self.config
-        return film_staged(_WORKER_ENV["env"], self.config, episode, out)
+            env = _WORKER_ENV["env"] = make_env(self.config)
+            _WORKER_ENV["config"] = self.config
+            _WORKER_ENV["learner"] = learner_for(env, self.config, self.policies)
+        env, learner = _WORKER_ENV["env"], _WORKER_ENV["learner"]
+        return film_staged(env, self.config, episode, out, learner=learner)
+
+
+def learner_for(env: BuildEnv, config: RecordConfig, policies: PolicyMaker | None) -> Any:
+    """A DAgger round's learner for `env` (None for the expert's own recording)."""
+    if config.policy is None:
+        return None
+    if policies is None:
+        raise ValueError("a recording driven by a policy needs the policy maker")
+    return policies(config.policy, env)
 
 
 def film_episode(
@@ -113,9 +133,10 @@ def film_episode(
     files: fmt.EpisodeFiles,
     config: RecordConfig,
     on_frame: Callable[[int, int], Any] | None,
+    learner: Any = None,
 ) -> tuple[Any, dict[str, Any]]:
-    """Roll the expert out into `files`; how it ended and its metadata row. A run stopped
-    midway leaves none of the episode's files."""
+    """Roll the expert out into `files` (a `learner` driving DAgger's share of it); how it
+    ended and its metadata row. A run stopped midway leaves none of the episode's files."""
     frames = 0
 
     def keep(frame: Frame) -> None:
@@ -127,7 +148,8 @@ def film_episode(
 
     try:
         seed = config.first_seed + files.episode
-        end = expert_episode(env, seed, config.cameras, keep, config.noise)
+        mixer = None if learner is None else Mixer(learner, config.fps, seed, config.beta)
+        end = expert_episode(env, seed, config.cameras, keep, config.noise, mixer)
         return end, files.close()
     except BaseException:
         files.abort()

@@ -29,7 +29,7 @@ from ..env.env import BuildEnv
 from ..task.layout import camera_names, check_cameras
 from ..task.variation import check_differ
 from .episode import PRIMITIVES, task_text
-from .filming import FilmAway, features, film_staged, make_env
+from .filming import FilmAway, PolicyMaker, features, film_staged, learner_for, make_env
 from .record_config import RecordConfig, Recorded
 from .staging import STAGING, land, staged
 
@@ -38,7 +38,10 @@ __all__ = ["RecordConfig", "Recorded", "record"]
 RECORDS = "meta/pyramid_sim"  # pyramid_sim's own files, where lerobot does not look
 DATASET_DOC = f"{RECORDS}/dataset.json"
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
-RUN_ONLY = ("episodes", "workers", "backend", "ray_address")
+# What drove an episode (DART's noise, a DAgger round's policy and its share) is among it: a
+# dataset grows by DAgger's rounds, and each episode's record says what drove it.
+RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", "beta")
+DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
 # Settings added since the first recordings, as an episode recorded before them had them.
 LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0}
 
@@ -73,10 +76,12 @@ def record(
     config: RecordConfig,
     on_frame: Callable[[int, int], Any] | None = None,
     on_episode: Callable[[int], Any] | None = None,
+    policies: PolicyMaker | None = None,
 ) -> Recorded:
     """Record the episodes `out` lacks; `on_frame(episode, its frames so far)` after each
     frame (with workers, once an episode lands, with all its frames); `on_episode(episodes in
-    the dataset)` before the first is filmed and after each lands."""
+    the dataset)` before the first is filmed and after each lands. A DAgger round's learner
+    (`config.policy`) is made by `policies(policy, env)`, in each worker."""
     records = _records(out)
     _check_same_recording(out, records, config)  # before the scene is compiled
     env = make_env(config)
@@ -85,6 +90,7 @@ def record(
         check_differ(
             config.episodes, config.variation, config.randomize, env.config.layout.spawn_jitter_mm
         )
+        learner = learner_for(env, config, policies)  # a bad policy refused before filming
         _clear_unrecorded(out, set(records))
         dataset = _Landing(out, env, config, records)
         missing = [e for e in range(config.episodes) if e not in records]
@@ -93,13 +99,13 @@ def record(
             on_episode(len(records))
 
         def film_here(episode: int) -> dict[str, Any]:
-            return film_staged(env, config, episode, out, on_frame)
+            return film_staged(env, config, episode, out, on_frame, learner)
 
         episodes = staged(
             missing,
             out,
             film_here,
-            FilmAway(config),
+            FilmAway(config, policies),
             workers=config.workers,
             backend=config.backend,
             address=config.ray_address,
@@ -172,6 +178,9 @@ class _Landing:
             "config": _settings(config),
             "row": _jsonable(row),
         }
+        if config.policy is not None:  # DAgger: what drove it, and how much of it
+            record["driver"] = {"policy": config.policy, "beta": config.beta,
+                                "learner_steps": end.learner_steps}  # fmt: skip
         _write_text(out / RECORDS / f"episode_{episode:06d}.json", json.dumps(record, indent=1))
         if self.added == 0:  # this run's first: the files every episode shares
             meta.write_tasks(out, self.task)
@@ -207,8 +216,11 @@ class _FramesBefore:
 
 
 def _settings(config: RecordConfig) -> dict[str, Any]:
-    """The recording's settings as its episode records keep them (JSON's types)."""
+    """The recording's settings as its episode records keep them (JSON's types); a DAgger
+    round's driver is kept apart (`driver`), so an expert's recording reads as ever."""
     doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
+    for name in DRIVER:
+        del doc[name]
     return doc
 
 

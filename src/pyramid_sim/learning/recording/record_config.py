@@ -16,7 +16,7 @@ from ...choices import (
 from ...config import MotionConfig
 from ...errors import ConfigError
 from ...jobs.backends import check_backend
-from ...params import EPISODES, LINGER, NOISE, WORKERS
+from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
 from ..task.layout import check_image_size, control_steps
 from ..task.variation import DEFAULT_LEVEL, check_level
 
@@ -42,6 +42,10 @@ class RecordConfig:
     noise: float = 0.0  # rad: DART's offset on the executed joints, the expert's own the label
     action_mode: str = "joint"  # or relative: each joint's action its change from the state
     linger: float = RECORD_LINGER  # s filmed after the build succeeds: the last release taught
+    # DAgger (dagger.py): a policy (as `evaluate --policy` takes one) drives the spans the
+    # expert does not (the expert's share `beta`), the expert labelling every frame
+    policy: str | None = None
+    beta: float = 0.5
 
     def __post_init__(self) -> None:
         EPISODES.check_whole(self.episodes)
@@ -52,6 +56,12 @@ class RecordConfig:
         check_backend(self.backend, self.ray_address)
         NOISE.check(self.noise)
         LINGER.check(self.linger)
+        BETA.check(self.beta)
+        if self.policy is not None and (not isinstance(self.policy, str) or not self.policy):
+            raise ConfigError(
+                f"policy: {self.policy!r} is not one; accepted a lerobot checkpoint folder, "
+                "zero, random or module:factory (as evaluate takes them)"
+            )
         if self.action_mode not in RECORD_ACTION_MODES:
             raise ConfigError(
                 f"action mode: {self.action_mode!r} is not recorded; accepted "
