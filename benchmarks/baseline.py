@@ -1,36 +1,48 @@
 #!/usr/bin/env python3
 """The learned baseline, end to end: the expert's demonstrations recorded with DART's noise,
-a policy trained on them by lerobot's own `lerobot-train`, and scored by `pyramid-sim
-evaluate` on held-out seeds.
+a policy trained on them by lerobot's own `lerobot-train`, DAgger's rounds (the policy
+drives, the expert labels what it reaches, and the policy is trained on with them), and the
+last policy scored by `pyramid-sim evaluate` on held-out seeds.
 
-    python benchmarks/baseline.py --out DIR [--quick] [--robot R] [--structure S --layers N]
+    python benchmarks/baseline.py --out DIR [--row NAME] [--results DIR] [--quick]
+                                  [--robot R] [--structure S --layers N] [--variation V]
                                   [--cameras A,B --image-size N] [--steps N] [--curve N]
-                                  [--action-mode M] [--noise X] [--linger S]
+                                  [--action-mode M] [--noise X] [--linger S] [--rounds N]
 
-Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
-(docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run),
-DIR/evaluation.json (the score, with its inputs and versions) and, with `--curve N`,
-DIR/curve.json and DIR/curve.png: every saved checkpoint scored on N seeds. A run stopped
-midway goes on from where it stopped (the demos and a finished training kept). Seeds are fixed:
-demos from 0, evaluation from 100000, training seed 0. `--quick` does a few of each.
+`--row NAME` is a leaderboard row's whole recipe (benchmarks/rows.py; an unknown name lists
+them); the other flags change it. Run it with the python of a venv that holds lerobot 0.6.1,
+pyramid_sim and its lerobot plugin (docs/benchmark.md says how). It writes DIR/demos (the
+dataset, DAgger's episodes added to it), DIR/train (lerobot's first run) and DIR/train_rK
+(round K's), DIR/evaluation.json (the score, with its inputs and versions), DIR/result.json
+(the row's result file: its recipe, versions, commit, machine, seconds and score; with
+`--results DIR2` also DIR2/NAME.json, as benchmarks/results/ keeps them) and, with `--curve
+N`, DIR/curve.json and DIR/curve.png: every saved checkpoint of the last training scored on N
+seeds. A run stopped midway goes on from where it stopped (the demos, every round's episodes
+and every finished training kept). Seeds are fixed: demos from 0 (DAgger's episodes after
+them), evaluation from 100000, training seed 0. `--quick` does a few of each.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import platform
 import re
 import resource
 import subprocess
 import sys
 import time
-from dataclasses import asdict, dataclass, replace
-from datetime import datetime
+from dataclasses import asdict, replace
+from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
 
-from pyramid_sim.choices import FPS_CHOICES, RECORD_IMAGE_SIZE
-from pyramid_sim.cli.args import (
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
+
+from rows import ROWS, Recipe, Round, quick  # noqa: E402
+
+from pyramid_sim.choices import FPS_CHOICES  # noqa: E402
+from pyramid_sim.cli.args import (  # noqa: E402
     EXIT_USAGE,
     Parser,
     bounded,
@@ -40,73 +52,30 @@ from pyramid_sim.cli.args import (
     output_path,
     whole,
 )
-from pyramid_sim.errors import PyramidSimError
-from pyramid_sim.params import LINGER
-from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
+from pyramid_sim.errors import PyramidSimError  # noqa: E402
+from pyramid_sim.params import LINGER  # noqa: E402
+from pyramid_sim.robots import PRESETS  # noqa: E402
 
-
-@dataclass(frozen=True)
-class Recipe:
-    """Everything that makes the row: the task, the demonstrations, the policy and its
-    training, and the evaluation."""
-
-    robot: str = DEFAULT_ROBOT
-    structure: str = "pyramid-even"
-    layers: int = 1
-    variation: str = "layout"
-    cameras: tuple[str, ...] = ()
-    # record's default: a default recording's checkpoint evaluates as is
-    image_size: tuple[int, int] = RECORD_IMAGE_SIZE
-    demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
-    noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
-    # s filmed after each build's success: ending there, a demonstration held a few frames
-    # after the last release and the policy held its last brick over the target to the end
-    # (docs/learning.md, "The last release, filmed")
-    linger: float = 2.0
-    # where each hand goes, from the pick location, its clear pose or its next target: the
-    # place is copied from the observation, not regressed (docs/learning.md, "Anchored actions")
-    action_mode: str = "anchored"
-    # the recording's rate, the policy's and the evaluation's: an episode of about 210 steps,
-    # a chunk of 20 covering 2 s (docs/learning.md, "What the policy waits for")
-    fps: int = 10
-    steps: int = 4000  # about 20 minutes on an idle core at 3.5 steps a second
-    learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
-    batch_size: int = 32
-    save_every: int = 1000
-    dim_model: int = 256
-    heads: int = 4
-    feedforward: int = 1024
-    encoder_layers: int = 2
-    decoder_layers: int = 1
-    vae: bool = False  # its KL term fell to 0 in every run: a deterministic expert
-    # ACT's default normalizes state, images and actions but not the environment state (the
-    # bricks, goals and hands): a policy trained so ignored them (docs/benchmark.md)
-    normalize_environment: bool = True
-    # each chunk of 2 s executed whole: replanning every 0.5 s, the policy put the release
-    # ahead of itself at every replan and held the brick over its target (docs/learning.md,
-    # "The feeder, and the whole chunk")
-    chunk: int = 20
-    action_steps: int = 20
-    episodes: int = 100
-    max_steps: int | None = None
-    curve_episodes: int = 0
-    workers: int = 1  # episodes recorded at once (the dataset is the same)
-
+__all__ = ["ROWS", "Recipe", "Round", "main"]
 
 NORMALIZED = {kind: "MEAN_STD" for kind in ("VISUAL", "STATE", "ENV", "ACTION")}
-QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
-             feedforward=128, encoder_layers=1, decoder_layers=1, chunk=10, action_steps=10,
-             episodes=2, max_steps=100)  # fmt: skip
+REPO = Path(__file__).resolve().parents[1]
 
 
-def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
+def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
     parser = Parser(prog="benchmarks/baseline.py", description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=output_path("out", folder=True), required=True)
+    parser.add_argument("--row", type=one_of("row", tuple(ROWS)), default="panda-2",
+                        help="a leaderboard row's recipe (default panda-2)")  # fmt: skip
+    parser.add_argument("--results", type=output_path("results", folder=True), default=None,
+                        help="also write the row's result file here, as NAME.json")  # fmt: skip
     parser.add_argument("--quick", action="store_true", help="a few of each (CI's round trip)")
-    parser.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=DEFAULT_ROBOT)
-    parser.add_argument("--structure", default="pyramid-even")
-    parser.add_argument("--layers", type=whole("layers"), default=1)
-    parser.add_argument("--cameras", default="", help="cameras the policy sees (default none)")
+    parser.add_argument("--robot", type=one_of("robot", tuple(PRESETS)), default=None)
+    parser.add_argument("--structure", default=None)
+    parser.add_argument("--layers", type=whole("layers"), default=None)
+    parser.add_argument("--variation", type=one_of("variation", ("fixed", "layout", "full")),
+                        default=None)  # fmt: skip
+    parser.add_argument("--cameras", default=None, help="cameras the policy sees (default none)")
     parser.add_argument("--image-size", type=image_size, default=None,
                         help="N or HxW: the cameras' images (default record's)")  # fmt: skip
     parser.add_argument("--steps", type=whole("steps"), default=None, help="training steps")
@@ -123,83 +92,126 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe]:
     )
     parser.add_argument("--fps", type=one_of("fps", tuple(map(str, FPS_CHOICES))), default=None,
                         help="steps a second (default the recipe's)")  # fmt: skip
+    parser.add_argument("--rounds", type=whole("rounds", "0 to the row's"), default=None,
+                        help="DAgger's rounds run, of the row's (default all)")  # fmt: skip
     parser.add_argument("--episodes", type=whole("episodes"), default=None, help="evaluated")
-    parser.add_argument("--workers", type=whole("workers"), default=1, help="recording them")
+    parser.add_argument("--workers", type=whole("workers"), default=1,
+                        help="recording and evaluating them")  # fmt: skip
     parser.add_argument(
         "--curve", type=whole("curve"), default=0, help="score every checkpoint on N seeds"
     )
     args = parser.parse_args(argv)
-    recipe = Recipe(robot=args.robot, structure=args.structure, layers=args.layers,
-                    cameras=tuple(c for c in args.cameras.split(",") if c),
-                    curve_episodes=args.curve, workers=args.workers)  # fmt: skip
+    recipe = replace(ROWS[args.row], curve_episodes=args.curve, workers=args.workers)
     if args.quick:
-        recipe = replace(recipe, **QUICK)  # type: ignore[arg-type]
-    given = {"steps": args.steps, "demos": args.demos, "noise": args.noise,
-             "linger": args.linger, "episodes": args.episodes, "action_mode": args.action_mode,
+        recipe = quick(recipe)
+    given = {"robot": args.robot, "structure": args.structure, "layers": args.layers,
+             "variation": args.variation, "steps": args.steps, "demos": args.demos,
+             "noise": args.noise, "linger": args.linger, "episodes": args.episodes,
+             "action_mode": args.action_mode,
              "fps": None if args.fps is None else int(args.fps),
-             "image_size": args.image_size}  # fmt: skip
+             "image_size": args.image_size,
+             "cameras": None if args.cameras is None
+             else tuple(c for c in args.cameras.split(",") if c)}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
+    if args.rounds is not None:
+        if args.rounds > len(recipe.rounds):
+            parser.error(f"rounds: {args.rounds}; accepted 0 to the row's {len(recipe.rounds)}")
+        recipe = replace(recipe, rounds=recipe.rounds[: args.rounds])
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:
             parser.error(f"{name}: {getattr(recipe, name)}; accepted 1 or more")
-    return args.out, recipe
+    return args.out, recipe, args.results
 
 
-def record(out: Path, recipe: Recipe) -> float:
+def record(out: Path, recipe: Recipe, episodes: int | None = None, **driver: Any) -> float:
+    """The dataset's first `episodes` (the demonstrations by default), those missing recorded:
+    by the expert, or with `driver` (policy, beta) a DAgger round's."""
     import pyramid_sim
 
     start = time.perf_counter()
     pyramid_sim.record(
         out / "demos", recipe.structure, robot=recipe.robot, layers=recipe.layers,
-        episodes=recipe.demos, seed=0, cameras=recipe.cameras,
+        episodes=episodes or recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=recipe.image_size, variation=recipe.variation,
-        noise=recipe.noise, workers=recipe.workers, action_mode=recipe.action_mode,
-        fps=recipe.fps, linger=recipe.linger,
+        noise=0.0 if driver else recipe.noise, workers=recipe.workers,
+        action_mode=recipe.action_mode, fps=recipe.fps, linger=recipe.linger, **driver,
     )  # fmt: skip
     return time.perf_counter() - start
 
 
 def built(demos: Path) -> list[int]:
-    """The recorded episodes whose build succeeded: an episode that failed ends holding still
-    by a misplaced brick for the rest of its step limit, which no policy should learn."""
+    """The recorded episodes to learn from: the expert's demonstrations that built (one that
+    failed ends holding still by a misplaced brick for the rest of its step limit, which no
+    policy should learn), and DAgger's episodes but those that ran to the step limit (the
+    expert's labels are right in every state a learner reached, up to a failure; at the
+    step limit the expert held still by a brick it cannot set right)."""
     records = sorted((demos / "meta" / "pyramid_sim").glob("episode_*.json"))
     episodes = [json.loads(p.read_text()) for p in records]
-    return [e["episode_index"] for e in episodes if e["success"]]
+    return [
+        e["episode_index"]
+        for e in episodes
+        if e["success"] or (e.get("driver") and "step limit" not in (e.get("failure") or ""))
+    ]
 
 
-def train(out: Path, recipe: Recipe) -> float:
-    """lerobot-train on one thread, on the episodes that built, its log in DIR/train.log."""
+def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) -> float:
+    """lerobot-train on one thread, on the episodes kept; round 0 from scratch, a DAgger
+    round on from the last round's policy. Its log is DIR/train.log (train_rK.log)."""
     r = recipe
     kept = built(out / "demos")
     if not kept:
         raise PyramidSimError("demos: no recorded episode built; accepted a recording with one")
     episodes = ",".join(map(str, kept))
+    if round_ == 0:
+        policy = [
+            "--policy.type=act",
+            f"--policy.dim_model={r.dim_model}", f"--policy.n_heads={r.heads}",
+            f"--policy.dim_feedforward={r.feedforward}",
+            f"--policy.n_encoder_layers={r.encoder_layers}",
+            f"--policy.n_decoder_layers={r.decoder_layers}", f"--policy.chunk_size={r.chunk}",
+            f"--policy.use_vae={str(r.vae).lower()}",
+            *([f"--policy.normalization_mapping={json.dumps(NORMALIZED)}"]
+              if r.normalize_environment else []),
+            f"--policy.n_action_steps={r.action_steps}",
+            "--policy.pretrained_backbone_weights=null",
+        ]  # fmt: skip
+    else:  # the last round's weights and settings; the normalization from the data now
+        policy = [f"--policy.path={checkpoint(out, round_ - 1)}"]
     command = [
         str(Path(sys.executable).parent / "lerobot-train"),
         f"--dataset.repo_id=local/{out.name}", f"--dataset.root={out / 'demos'}",
-        f"--dataset.episodes=[{episodes}]",
-        "--policy.type=act", "--policy.device=cpu", "--policy.push_to_hub=false",
-        f"--policy.dim_model={r.dim_model}", f"--policy.n_heads={r.heads}",
-        f"--policy.dim_feedforward={r.feedforward}",
-        f"--policy.n_encoder_layers={r.encoder_layers}",
-        f"--policy.n_decoder_layers={r.decoder_layers}", f"--policy.chunk_size={r.chunk}",
-        f"--policy.use_vae={str(r.vae).lower()}", f"--policy.optimizer_lr={r.learning_rate}",
-        *([f"--policy.normalization_mapping={json.dumps(NORMALIZED)}"]
-          if r.normalize_environment else []),
-        f"--policy.n_action_steps={r.action_steps}",
-        "--policy.pretrained_backbone_weights=null", f"--steps={r.steps}",
+        f"--dataset.episodes=[{episodes}]", *policy,
+        "--policy.device=cpu", "--policy.push_to_hub=false",
+        f"--policy.optimizer_lr={r.learning_rate}", f"--steps={steps or r.steps}",
         f"--batch_size={r.batch_size}", f"--save_freq={r.save_every}", "--num_workers=0",
-        "--wandb.enable=false", "--seed=0", f"--output_dir={out / 'train'}",
+        "--wandb.enable=false", "--seed=0", f"--output_dir={training(out, round_)}",
     ]  # fmt: skip
     environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
     start, cpu = time.perf_counter(), _children_cpu()
-    with open(out / "train.log", "w") as log:
+    with open(_log(out, round_), "w") as log:
         done = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=environment)
     if done.returncode != 0:
         raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
     # on one thread, its CPU time is what it took of one core, however loaded the machine
-    (out / "train_cpu_s.txt").write_text(f"{_children_cpu() - cpu:.0f}\n")
+    _cpu_file(out, round_).write_text(f"{_children_cpu() - cpu:.0f}\n")
     return time.perf_counter() - start
+
+
+def training(out: Path, round_: int) -> Path:
+    """Round `round_`'s lerobot output folder (round 0 is the first training)."""
+    return out / ("train" if round_ == 0 else f"train_r{round_}")
+
+
+def checkpoint(out: Path, round_: int) -> Path:
+    return training(out, round_) / "checkpoints" / "last" / "pretrained_model"
+
+
+def _log(out: Path, round_: int) -> Path:
+    return out / ("train.log" if round_ == 0 else f"train_r{round_}.log")
+
+
+def _cpu_file(out: Path, round_: int) -> Path:
+    return out / ("train_cpu_s.txt" if round_ == 0 else f"train_r{round_}_cpu_s.txt")
 
 
 def _children_cpu() -> float:
@@ -207,10 +219,11 @@ def _children_cpu() -> float:
     return used.ru_utime + used.ru_stime
 
 
-def trained_before(out: Path) -> float | None:
-    """The seconds a finished training in `out` took (from its log), or None if there is
-    none: a run that stopped after training goes on from there, as `record` does."""
-    log, last = out / "train.log", out / "train" / "checkpoints" / "last" / "pretrained_model"
+def trained_before(out: Path, round_: int = 0) -> float | None:
+    """The seconds a finished training of round `round_` in `out` took (from its log), or
+    None if there is none: a run that stopped after training goes on from there, as
+    `record` does."""
+    log, last = _log(out, round_), checkpoint(out, round_)
     if not (last / "model.safetensors").is_file() or not log.is_file():
         return None
     stamps = re.findall(
@@ -230,20 +243,22 @@ def score(checkpoint: Path, recipe: Recipe, episodes: int, out: Path | None) -> 
     evaluation = pyramid_sim.evaluate(
         str(checkpoint), recipe.structure, out=out, robot=recipe.robot, layers=recipe.layers,
         variation=recipe.variation, episodes=episodes, max_steps=recipe.max_steps,
-        action_mode=recipe.action_mode, fps=recipe.fps,
+        action_mode=recipe.action_mode, fps=recipe.fps, workers=recipe.workers,
     )  # fmt: skip
     return evaluation.scores
 
 
 def curve(out: Path, recipe: Recipe) -> None:
-    """Every saved checkpoint scored on `curve_episodes` seeds: curve.json and curve.png."""
+    """Every saved checkpoint of the last training scored on `curve_episodes` seeds:
+    curve.json and curve.png."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     points = []
-    for folder in sorted((out / "train" / "checkpoints").glob("[0-9]*")):
+    last = training(out, len(recipe.rounds))
+    for folder in sorted((last / "checkpoints").glob("[0-9]*")):
         scores = score(folder / "pretrained_model", recipe, recipe.curve_episodes, None)
         points.append({"step": int(folder.name), "success_rate": scores["success_rate"],
                        "interval": scores["success_rate_95"]})  # fmt: skip
@@ -261,19 +276,113 @@ def curve(out: Path, recipe: Recipe) -> None:
     figure.savefig(out / "curve.png", dpi=120)
 
 
+def dagger(out: Path, recipe: Recipe, seconds: dict[str, float]) -> list[dict[str, Any]]:
+    """DAgger's rounds: each records its episodes with the last policy driving and trains
+    on from it; what each added (episodes, kept, learner's share)."""
+    added = []
+    total = recipe.demos
+    for k, round_ in enumerate(recipe.rounds, start=1):
+        before = total
+        total += round_.episodes
+        driver = {"policy": str(checkpoint(out, k - 1)), "beta": round_.beta}
+        seconds[f"record_r{k}"] = record(out, recipe, total, **driver)
+        done = trained_before(out, k)
+        seconds[f"train_r{k}"] = done if done is not None else train(out, recipe, k, round_.steps)
+        added.append(_round_summary(out / "demos", range(before, total), round_))
+    return added
+
+
+def _round_summary(demos: Path, episodes: range, round_: Round) -> dict[str, Any]:
+    records = [
+        json.loads((demos / "meta" / "pyramid_sim" / f"episode_{i:06d}.json").read_text())
+        for i in episodes
+    ]
+    frames = sum(r["row"]["length"] for r in records)
+    learner = sum(r["driver"]["learner_steps"] for r in records)
+    return {
+        **asdict(round_),
+        "built": sum(r["success"] for r in records),
+        "kept": sum(i in set(built(demos)) for i in episodes),
+        "learner_share": learner / frames if frames else 0.0,
+    }
+
+
+def machine() -> dict[str, Any]:
+    """Where the row ran: the CPU, its cores, and the accelerator if torch sees one."""
+    found: dict[str, Any] = {"cpu": platform.processor() or platform.machine(),
+                             "cores": os.cpu_count(), "gpu": None}  # fmt: skip
+    try:
+        import torch
+
+        if torch.cuda.is_available():
+            found["gpu"] = torch.cuda.get_device_name(0)
+    except ImportError:
+        pass
+    return found
+
+
+def commit() -> str:
+    """The commit the row ran at, `+dirty` if the checkout had changes."""
+
+    def git(*args: str) -> str:
+        done = subprocess.run(["git", *args], cwd=REPO, capture_output=True, text=True)
+        return done.stdout.strip()
+
+    head = git("rev-parse", "HEAD") or "unknown"
+    return head + ("+dirty" if git("status", "--porcelain", "--", "src", "benchmarks") else "")
+
+
+def result(
+    recipe: Recipe,
+    evaluation: dict[str, Any],
+    seconds: dict[str, float],
+    demos: Path,
+    rounds: list[dict[str, Any]],
+) -> dict[str, Any]:
+    """The row's result file: what the leaderboard shows and everything that made it."""
+    records = [
+        json.loads(p.read_text()) for p in sorted((demos / "meta/pyramid_sim").glob("ep*.json"))
+    ]
+    expert = [r for r in records if not r.get("driver")]
+    return {
+        "row": recipe.row,
+        "track": recipe.track,
+        "task": {"structure": recipe.structure, "layers": recipe.layers,
+                 "bricks": evaluation["bricks"], "variation": recipe.variation},
+        "robot": recipe.robot,
+        "policy": "ACT (lerobot-train)",
+        "action_mode": recipe.action_mode,
+        "inputs": ["state", "environment_state", *recipe.cameras],
+        "demos": {"recorded": len(expert), "built": sum(r["success"] for r in expert),
+                  "noise": recipe.noise, "dagger_rounds": rounds},
+        "score": {k: evaluation[k] for k in ("episodes", "successes", "success_rate",
+                                             "success_rate_95", "bricks_placed_mean",
+                                             "failures", "protocol")},
+        "training_steps": recipe.steps + sum(r.steps for r in recipe.rounds),
+        "seconds": seconds,
+        "machine": machine(),
+        "commit": commit(),
+        "versions": evaluation["versions"],
+        "recipe": asdict(recipe),
+        "command": f"python benchmarks/baseline.py --row {recipe.row} --out DIR",
+        "finished": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    }  # fmt: skip
+
+
 def main(argv: list[str] | None = None) -> int:
-    out, recipe = parse(argv)
+    out, recipe, results = parse(argv)
     try:
         out.mkdir(parents=True, exist_ok=True)
         seconds = {"record": record(out, recipe)}
         before = trained_before(out)
         seconds["train"] = before if before is not None else train(out, recipe)
-        cpu = out / "train_cpu_s.txt"
-        if cpu.is_file():
-            seconds["train_cpu"] = float(cpu.read_text())
-        checkpoint = out / "train" / "checkpoints" / "last" / "pretrained_model"
+        rounds = dagger(out, recipe, seconds)
+        cpu = sorted(out.glob("train*_cpu_s.txt"))
+        if cpu:
+            seconds["train_cpu"] = sum(float(p.read_text()) for p in cpu)
+        last = checkpoint(out, len(recipe.rounds))
         start = time.perf_counter()
-        scores = score(checkpoint, recipe, recipe.episodes, out)
+        scores = score(last, recipe, recipe.episodes, out)
         seconds["evaluate"] = time.perf_counter() - start
         if recipe.curve_episodes:
             curve(out, recipe)
@@ -284,10 +393,15 @@ def main(argv: list[str] | None = None) -> int:
     document = json.loads((out / "evaluation.json").read_text())
     document["baseline"] = {"recipe": asdict(recipe), "seconds": seconds}
     (out / "evaluation.json").write_text(json.dumps(document, indent=1) + "\n")
+    row = json.dumps(result(recipe, document, seconds, out / "demos", rounds), indent=1) + "\n"
+    (out / "result.json").write_text(row)
+    if results is not None:
+        results.mkdir(parents=True, exist_ok=True)
+        (results / f"{recipe.row}.json").write_text(row)
     print(
-        f"baseline: {scores['successes']}/{scores['episodes']} built "
+        f"baseline {recipe.row}: {scores['successes']}/{scores['episodes']} built "
         f"({100 * scores['success_rate']:.0f} %), trained {recipe.steps} steps in "
-        f"{seconds['train'] / 60:.1f} min -> {out / 'evaluation.json'}"
+        f"{seconds['train'] / 60:.1f} min -> {out / 'result.json'}"
     )
     return 0
 

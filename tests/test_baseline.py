@@ -58,11 +58,11 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
 
 
 def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, capsys):
-    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert (recipe.action_mode, recipe.noise) == ("anchored", 0.005)  # metres on each hand
     assert recipe.fps == baseline.Recipe.fps
     given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
-    _, recipe = baseline.parse([*given, "--fps", "25"])
+    _, recipe, _ = baseline.parse([*given, "--fps", "25"])
     assert (recipe.action_mode, recipe.noise, recipe.fps) == ("relative", 0.003, 25)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--action-mode", "ee"])
@@ -80,9 +80,9 @@ def test_the_recipes_linger_reaches_the_recording_and_one_out_of_range_is_refuse
 
     calls: dict[str, dict] = {}
     monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
-    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.linger == 2.0  # the last release filmed
-    _, recipe = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
     baseline.record(tmp_path, recipe)
     assert calls["record"]["linger"] == 0.5
     with pytest.raises(SystemExit) as stopped:
@@ -119,10 +119,10 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
 
     calls: dict[str, dict] = {}
     monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
-    _, recipe = baseline.parse(["--out", str(tmp_path / "a")])
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.image_size == (224, 224)  # record's default
     given = ["--out", str(tmp_path / "b"), "--cameras", "overview", "--image-size", "96"]
-    _, recipe = baseline.parse(given)
+    _, recipe, _ = baseline.parse(given)
     baseline.record(tmp_path, recipe)
     assert calls["record"]["image_size"] == (96, 96)
     assert calls["record"]["cameras"] == ("overview",)
@@ -131,3 +131,77 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     err = capsys.readouterr().err
     assert stopped.value.code == 2 and "image size: '15'; accepted even, 16 to 1080" in err
     assert not (tmp_path / "c").exists()
+
+
+def _driven(root: Path, index: int, success: bool, failure: str | None, steps: int = 10):
+    folder = root / "demos" / "meta" / "pyramid_sim"
+    record = {"episode_index": index, "success": success, "failure": failure,
+              "row": {"length": 20}, "driver": {"policy": "p", "beta": 0.5,
+                                                 "learner_steps": steps}}  # fmt: skip
+    (folder / f"episode_{index:06d}.json").write_text(json.dumps(record))
+
+
+def test_daggers_episodes_are_learned_from_but_those_that_ran_out_of_steps(tmp_path):
+    """The expert labels every state a learner reaches: a DAgger episode that failed is kept
+    (its labels right up to the failure), one that ran to the step limit is not (the expert
+    held still there by a brick it cannot set right); an expert's failed demo is not."""
+    _records(tmp_path, [True, False])
+    _driven(tmp_path, 2, True, None)
+    _driven(tmp_path, 3, False, "a joint demanded 2.00 of its torque limit")
+    _driven(tmp_path, 4, False, "step limit: 900 steps")
+    assert baseline.built(tmp_path / "demos") == [0, 2, 3]
+    summary = baseline._round_summary(tmp_path / "demos", range(2, 5), baseline.Round(3, 0.5, 7))
+    assert summary == {"episodes": 3, "beta": 0.5, "steps": 7, "built": 1, "kept": 2,
+                       "learner_share": 0.5}  # fmt: skip
+
+
+def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
+    out, recipe, results = baseline.parse(["--out", str(tmp_path / "a"), "--row", "panda-6"])
+    assert recipe == baseline.ROWS["panda-6"] and results is None
+    assert (recipe.layers, recipe.track, recipe.row) == (2, "keypose", "panda-6")
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--row", "so101-2",
+                                   "--steps", "7", "--results", str(tmp_path / "r")])  # fmt: skip
+    assert (recipe.robot, recipe.steps) == ("so101", 7)
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "c"), "--row", "nosuch"])
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and "row: unknown 'nosuch'; accepted panda-2, panda-6" in err
+    rounds = len(baseline.ROWS["panda-2"].rounds)
+    with pytest.raises(SystemExit) as stopped:
+        baseline.parse(["--out", str(tmp_path / "d"), "--rounds", str(rounds + 1)])
+    assert stopped.value.code == 2 and "rounds: " in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # nothing written for any of them
+
+
+def test_a_dagger_round_trains_on_from_the_last_rounds_policy(tmp_path, monkeypatch):
+    _records(tmp_path, [True])
+    commands = []
+
+    def fake_run(command, **_):
+        commands.append(command)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    baseline.train(tmp_path, baseline.Recipe(), 2, steps=123)
+    command = commands[0]
+    assert f"--policy.path={tmp_path / 'train_r1/checkpoints/last/pretrained_model'}" in command
+    assert "--steps=123" in command and f"--output_dir={tmp_path / 'train_r2'}" in command
+    assert not [a for a in command if a.startswith("--policy.type")]  # the policy's own
+    assert (tmp_path / "train_r2_cpu_s.txt").is_file()
+
+
+def test_the_result_file_holds_the_score_its_inputs_and_where_it_ran(tmp_path):
+    _records(tmp_path, [True, False])
+    _driven(tmp_path, 2, True, None)
+    evaluation = {"episodes": 10, "successes": 7, "success_rate": 0.7,
+                  "success_rate_95": [0.4, 0.9], "bricks_placed_mean": 1.7, "failures": {},
+                  "protocol": {"first_seed": 100000}, "bricks": 2,
+                  "versions": {"pyramid_sim": "x"}}  # fmt: skip
+    recipe = baseline.ROWS["panda-2"]
+    doc = baseline.result(recipe, evaluation, {"train": 5.0}, tmp_path / "demos", [])
+    assert doc["score"]["successes"] == 7 and doc["score"]["success_rate_95"] == [0.4, 0.9]
+    assert doc["demos"]["recorded"] == 2 and doc["demos"]["built"] == 1  # the expert's own
+    assert doc["track"] == "keypose" and doc["task"]["bricks"] == 2
+    assert doc["command"] == "python benchmarks/baseline.py --row panda-2 --out DIR"
+    assert len(doc["commit"].split("+")[0]) == 40 and doc["machine"]["cores"] >= 1
+    assert doc["recipe"]["row"] == "panda-2" and doc["versions"] == {"pyramid_sim": "x"}

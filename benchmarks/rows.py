@@ -1,0 +1,107 @@
+"""The leaderboard's rows, each a whole recipe by name: the task, the demonstrations, DAgger's
+rounds, the policy and its training, and the evaluation. `benchmarks/baseline.py --row NAME`
+runs one end to end; its result file lands in benchmarks/results/NAME.json, and
+`benchmarks/leaderboard.py` writes docs/benchmark.md's table from those files."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from pyramid_sim.choices import RECORD_IMAGE_SIZE
+from pyramid_sim.robots import DEFAULT_ROBOT
+
+# The keypose track: a hand's pose chosen each step, the motion between them the simulator's
+# (as RLBench reports its keyframe methods apart); the continuous track: the arm commanded
+# every step, nothing in the action copied from the observation.
+TRACKS = {"anchored": "keypose", "waypoint": "keypose", "joint": "continuous",
+          "relative": "continuous", "ee": "continuous"}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Round:
+    """One DAgger round: `episodes` more episodes recorded with the last policy driving the
+    spans its expert does not (`beta` the expert's share), then the policy trained on for
+    `steps` more on everything kept."""
+
+    episodes: int
+    beta: float
+    steps: int
+
+
+@dataclass(frozen=True)
+class Recipe:
+    """Everything that makes the row: the task, the demonstrations, the policy and its
+    training, DAgger's rounds and the evaluation."""
+
+    row: str = "panda-2"
+    robot: str = DEFAULT_ROBOT
+    structure: str = "pyramid-even"
+    layers: int = 1
+    variation: str = "layout"
+    cameras: tuple[str, ...] = ()
+    # record's default: a default recording's checkpoint evaluates as is
+    image_size: tuple[int, int] = RECORD_IMAGE_SIZE
+    demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
+    noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
+    # s filmed after each build's success: ending there, a demonstration held a few frames
+    # after the last release and the policy held its last brick over the target to the end
+    # (docs/notes/2026-11-28-learning.md, "The last release, filmed")
+    linger: float = 2.0
+    # where each hand goes, from the pick location, its clear pose or its next target: the
+    # place is copied from the observation, not regressed (docs/env.md, "anchored")
+    action_mode: str = "anchored"
+    # the recording's rate, the policy's and the evaluation's: an episode of about 210 steps,
+    # a chunk of 20 covering 2 s
+    fps: int = 10
+    steps: int = 4000  # about 20 minutes on an idle core at 3.5 steps a second
+    learning_rate: float = 3e-4  # ACT's default 1e-5 took 7000 steps to reach 500's loss
+    batch_size: int = 32
+    save_every: int = 1000
+    dim_model: int = 256
+    heads: int = 4
+    feedforward: int = 1024
+    encoder_layers: int = 2
+    decoder_layers: int = 1
+    vae: bool = False  # its KL term fell to 0 in every run: a deterministic expert
+    # ACT's default normalizes state, images and actions but not the environment state (the
+    # bricks, goals and hands): a policy trained so ignored them
+    normalize_environment: bool = True
+    # each chunk of 2 s executed whole: replanning every 0.5 s, the policy put the release
+    # ahead of itself at every replan and held the brick over its target
+    chunk: int = 20
+    action_steps: int = 20
+    rounds: tuple[Round, ...] = ()  # DAgger's, after the first training
+    episodes: int = 100
+    max_steps: int | None = None
+    curve_episodes: int = 0
+    workers: int = 1  # episodes recorded and evaluated at once (the data and scores the same)
+
+    @property
+    def track(self) -> str:
+        return TRACKS[self.action_mode]
+
+
+ROWS: dict[str, Recipe] = {
+    r.row: r
+    for r in (
+        # the two-brick task, the recipe the first learned rows were found with
+        Recipe(),
+        # the six-brick pyramid: DART's 5 mm over six bricks leaves a third of the demos
+        # built, 3 mm two thirds; ACT trained on them, then DAgger's rounds
+        Recipe(
+            row="panda-6", layers=2, demos=300, noise=0.003, steps=10000, save_every=2000
+        ),  # fmt: skip
+        # every randomization drawn: friction, mass, grip force, brick size, looks
+        Recipe(row="panda-2-full", variation="full"),
+        # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
+        Recipe(row="so101-2", robot="so101", noise=0.00125),
+    )
+}
+QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
+             feedforward=128, encoder_layers=1, decoder_layers=1, chunk=10, action_steps=10,
+             episodes=2, max_steps=100, rounds=())  # fmt: skip
+
+
+def quick(recipe: Recipe) -> Recipe:
+    """A few of each, for CI's round trip: the row's task, a tiny policy."""
+    return replace(recipe, **QUICK)  # type: ignore[arg-type]
