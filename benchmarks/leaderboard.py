@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""docs/benchmark.md's leaderboard, written from the committed result files: one row a file of
+benchmarks/results/ (each written by `benchmarks/baseline.py --row NAME --results
+benchmarks/results`), keypose rows first, then continuous, each by success. A number on the
+page is a number in a file, never one typed.
+
+    python benchmarks/leaderboard.py [--check]
+
+Writes the table between the page's leaderboard marks; `--check` only says whether the page
+holds it (exit 1 if not), as the tests do.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+REPO = Path(__file__).resolve().parents[1]
+RESULTS = REPO / "benchmarks" / "results"
+PAGE = REPO / "docs" / "benchmark.md"
+START, END = "<!-- leaderboard: start -->", "<!-- leaderboard: end -->"
+COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
+           "training", "success (95 % interval)", "commit", "reproduce")  # fmt: skip
+TRACK_ORDER = {"keypose": 0, "continuous": 1}
+
+
+def load(folder: Path = RESULTS) -> list[dict[str, Any]]:
+    """The result files, in the table's order."""
+    rows = [json.loads(p.read_text()) for p in sorted(folder.glob("*.json"))]
+    return sorted(rows, key=lambda r: (TRACK_ORDER.get(r["track"], 9), -r["score"]["success_rate"],
+                                       r["row"]))  # fmt: skip
+
+
+def _task(row: dict[str, Any]) -> str:
+    task = row["task"]
+    variation = "" if task["variation"] == "layout" else f", {task['variation']}"
+    return f"{task['structure']} {task['layers']} ({task['bricks']} bricks{variation})"
+
+
+def _demos(row: dict[str, Any]) -> str:
+    demos = row["demos"]
+    text = f"{demos['built']} of {demos['recorded']} built"
+    rounds = demos.get("dagger_rounds") or []
+    if rounds:
+        text += f" + {sum(r['episodes'] for r in rounds)} DAgger ({len(rounds)} rounds)"
+    return text
+
+
+def _training(row: dict[str, Any]) -> str:
+    seconds, found = row["seconds"], row["machine"]
+    cpu = seconds.get("train_cpu")
+    cost = f"{cpu / 60:.0f} min of one core" if cpu is not None else "?"
+    where = found["gpu"] or f"{found['cores']}-core CPU, no GPU"
+    return f"{row['training_steps']} steps, {cost} ({where})"
+
+
+def _success(row: dict[str, Any]) -> str:
+    score = row["score"]
+    low, high = (100 * v for v in score["success_rate_95"])
+    return (
+        f"**{score['successes']}/{score['episodes']}** ({low:.0f}-{high:.0f} %), "
+        f"{score['bricks_placed_mean']:.2f} bricks placed"
+    )
+
+
+def table(rows: list[dict[str, Any]]) -> str:
+    """The leaderboard's markdown table."""
+    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + " --- |" * len(COLUMNS)]
+    for row in rows:
+        cells = (
+            row["track"],
+            _task(row),
+            row["robot"],
+            row["policy"],
+            row["action_mode"],
+            ", ".join(row["inputs"]),
+            _demos(row),
+            _training(row),
+            _success(row),
+            row["commit"][:7] + ("+" if "+" in row["commit"] else ""),
+            f"`{row['command']}`",
+        )
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def page_with(text: str, rows: list[dict[str, Any]]) -> str:
+    """The page `text` with its leaderboard (between the marks) written from `rows`."""
+    if START not in text or END not in text:
+        raise SystemExit(f"{PAGE}: the leaderboard's marks {START} and {END} are missing")
+    head, rest = text.split(START, 1)
+    _, tail = rest.split(END, 1)
+    return f"{head}{START}\n{table(rows)}\n{END}{tail}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = sys.argv[1:] if argv is None else argv
+    text = PAGE.read_text()
+    wanted = page_with(text, load())
+    if args == ["--check"]:
+        if wanted != text:
+            print(f"{PAGE} does not hold the results' leaderboard: run {__file__}")
+            return 1
+        return 0
+    if args:
+        print("usage: python benchmarks/leaderboard.py [--check]", file=sys.stderr)
+        return 2
+    PAGE.write_text(wanted)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
