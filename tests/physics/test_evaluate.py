@@ -212,6 +212,18 @@ def test_a_checkpoint_is_evaluated_on_what_its_recording_was(tmp_path, checkpoin
     assert (task["fps"], task["action_mode"], task["variation"]) == (10, "anchored", "layout")
 
 
+def test_lerobots_view_renders_the_overview_at_a_films_size_whatever_the_policy_sees():
+    """lerobot-eval films every evaluation: a state-only policy's environment gives it frames
+    (it wrote tracebacks and listed films that were never written when given None)."""
+    env = gymnasium.make(pyramid_sim.LEROBOT_ENV_ID, structure="pyramid-even", cameras=(),
+                         max_episode_steps=10, **TASK)  # fmt: skip
+    obs, _ = env.reset(seed=0)
+    frame = env.render()
+    assert "pixels" not in obs and frame.shape == (480, 640, 3) and frame.dtype == np.uint8
+    assert frame.mean() > 60 and frame.std() > 10  # the scene, not a blank
+    env.close()
+
+
 def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
     """The keys lerobot maps (agent_pos, environment_state, pixels/<camera>) carry what
     `record` writes as observation.state, observation.environment_state and
