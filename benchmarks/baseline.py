@@ -8,7 +8,10 @@ evaluate` on held-out seeds.
                                   [--action-mode M] [--noise X] [--linger S]
 
 Run it with the python of a venv that holds lerobot 0.6.1, pyramid_sim and its lerobot plugin
-(docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run),
+(docs/benchmark.md says how). It writes DIR/demos (the dataset), DIR/train (lerobot's run, the
+plugin's env in each checkpoint's train_config.json: `pyramid-sim evaluate --policy CKPT`
+needs no flags), DIR/lerobot_eval.txt (the lerobot-eval line that scores the checkpoint on the
+same seeds: lerobot-eval reads no env from a checkpoint, so it repeats the env's flags),
 DIR/evaluation.json (the score, with its inputs and versions) and, with `--curve N`,
 DIR/curve.json and DIR/curve.png: every saved checkpoint scored on N seeds. A run stopped
 midway goes on from where it stopped (the demos and a finished training kept). Seeds are fixed:
@@ -21,6 +24,7 @@ import json
 import os
 import re
 import resource
+import shlex
 import subprocess
 import sys
 import time
@@ -29,7 +33,7 @@ from datetime import datetime
 from pathlib import Path
 from typing import Any
 
-from pyramid_sim.choices import FPS_CHOICES, RECORD_IMAGE_SIZE
+from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES, RECORD_IMAGE_SIZE
 from pyramid_sim.cli.args import (
     EXIT_USAGE,
     Parser,
@@ -190,6 +194,8 @@ def train(out: Path, recipe: Recipe) -> float:
         "--policy.pretrained_backbone_weights=null", f"--steps={r.steps}",
         f"--batch_size={r.batch_size}", f"--save_freq={r.save_every}", "--num_workers=0",
         "--wandb.enable=false", "--seed=0", f"--output_dir={out / 'train'}",
+        # the env saved with the checkpoint, never run: no evaluation during training
+        *env_flags(r), "--env_eval_freq=0",
     ]  # fmt: skip
     environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
     start, cpu = time.perf_counter(), _children_cpu()
@@ -199,7 +205,34 @@ def train(out: Path, recipe: Recipe) -> float:
         raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
     # on one thread, its CPU time is what it took of one core, however loaded the machine
     (out / "train_cpu_s.txt").write_text(f"{_children_cpu() - cpu:.0f}\n")
+    (out / "lerobot_eval.txt").write_text(lerobot_eval_line(out, r) + "\n")
     return time.perf_counter() - start
+
+
+def env_flags(recipe: Recipe) -> list[str]:
+    """The plugin's env of the recipe's task, as lerobot-train saves it beside a checkpoint
+    (where `pyramid-sim evaluate` reads it) and as lerobot-eval takes it."""
+    r = recipe
+    height, width = r.image_size
+    return [
+        "--env.type=pyramid_sim", f"--env.robot={r.robot}", f"--env.task={r.structure}",
+        f"--env.layers={r.layers}", f"--env.variation={r.variation}", f"--env.fps={r.fps}",
+        f"--env.action_mode={r.action_mode}", f"--env.cameras={json.dumps(list(r.cameras))}",
+        f"--env.observation_height={height}", f"--env.observation_width={width}",
+        *([f"--env.episode_length={r.max_steps}"] if r.max_steps else []),
+    ]  # fmt: skip
+
+
+def lerobot_eval_line(out: Path, recipe: Recipe) -> str:
+    """The lerobot-eval command that scores the last checkpoint on the evaluation's seeds:
+    lerobot-eval takes no env from a checkpoint (its --config_path refuses a train_config),
+    so the env's flags are repeated."""
+    checkpoint = out / "train" / "checkpoints" / "last" / "pretrained_model"
+    return shlex.join([
+        "lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu", *env_flags(recipe),
+        f"--eval.n_episodes={recipe.episodes}", "--eval.batch_size=1",
+        f"--seed={EVAL_FIRST_SEED}", f"--output_dir={out / 'lerobot_eval'}",
+    ])  # fmt: skip
 
 
 def _children_cpu() -> float:

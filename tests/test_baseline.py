@@ -131,3 +131,34 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     err = capsys.readouterr().err
     assert stopped.value.code == 2 and "image size: '15'; accepted even, 16 to 1080" in err
     assert not (tmp_path / "c").exists()
+
+
+def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_is_left_beside_it(
+    tmp_path, monkeypatch
+):
+    """lerobot-train saves the plugin's env in each checkpoint's train_config.json (where
+    `pyramid-sim evaluate` reads it), never running it; lerobot-eval reads no env from a
+    checkpoint, so the line that scores it repeats the env's flags, and the seeds."""
+    import shlex
+
+    _records(tmp_path, [True])
+    commands = []
+
+    def fake_run(command, **_):
+        commands.append(command)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    recipe = baseline.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
+    baseline.train(tmp_path, recipe)
+    env = ["--env.type=pyramid_sim", "--env.robot=panda", "--env.task=pyramid-even",
+           "--env.layers=1", "--env.variation=layout", "--env.fps=10",
+           "--env.action_mode=anchored", '--env.cameras=["overview"]',
+           "--env.observation_height=96", "--env.observation_width=96",
+           "--env.episode_length=300"]  # fmt: skip
+    assert [a for a in commands[0] if a.startswith("--env")] == [*env, "--env_eval_freq=0"]
+    line = shlex.split((tmp_path / "lerobot_eval.txt").read_text())
+    checkpoint = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model"
+    assert line[:3] == ["lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu"]
+    assert line[3:14] == env and "--seed=100000" in line and "--eval.n_episodes=100" in line
+    assert [a for a in baseline.env_flags(baseline.Recipe()) if "length" in a] == []
