@@ -116,7 +116,7 @@ def test_an_so101_action_fits_three_modes_and_each_is_named(tmp_path, checkpoint
 
 
 def test_a_mode_whose_width_is_not_the_actions_is_refused(tmp_path, checkpoint):
-    """What the issue's user met as `operands could not be broadcast together with shapes
+    """What a user met as `operands could not be broadcast together with shapes
     (12,) (16,)` after the first step: now one line before anything runs."""
     folder = checkpoint(tmp_path / "c", action=12, train=False)
     with pytest.raises(
