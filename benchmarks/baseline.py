@@ -13,7 +13,10 @@ last policy scored by `pyramid-sim evaluate` on held-out seeds.
 them); the other flags change it. Run it with the python of a venv that holds lerobot 0.6.1,
 pyramid_sim and its lerobot plugin (docs/benchmark.md says how). It writes DIR/demos (the
 dataset, DAgger's episodes added to it), DIR/train (lerobot's first run) and DIR/train_rK
-(round K's), DIR/evaluation.json (the score, with its inputs and versions), DIR/result.json
+(round K's; the plugin's env in each checkpoint's train_config.json, so `pyramid-sim evaluate
+--policy CKPT` needs no flags), DIR/lerobot_eval.txt (the lerobot-eval line that scores the
+last checkpoint on the same seeds: lerobot-eval reads no env from a checkpoint, so it repeats
+the env's flags), DIR/evaluation.json (the score, with its inputs and versions), DIR/result.json
 (the row's result file: its recipe, versions, commit, machine, seconds and score; with
 `--results DIR2` also DIR2/NAME.json, as benchmarks/results/ keeps them) and, with `--curve
 N`, DIR/curve.json and DIR/curve.png: every saved checkpoint of the last training scored on N
@@ -29,6 +32,7 @@ import os
 import platform
 import re
 import resource
+import shlex
 import subprocess
 import sys
 import time
@@ -41,7 +45,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
 
-from pyramid_sim.choices import FPS_CHOICES  # noqa: E402
+from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES  # noqa: E402
 from pyramid_sim.cli.args import (  # noqa: E402
     EXIT_USAGE,
     Parser,
@@ -185,6 +189,8 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
         f"--policy.optimizer_lr={r.learning_rate}", f"--steps={steps or r.steps}",
         f"--batch_size={r.batch_size}", f"--save_freq={r.save_every}", "--num_workers=0",
         "--wandb.enable=false", "--seed=0", f"--output_dir={training(out, round_)}",
+        # the env saved with the checkpoint, never run: no evaluation during training
+        *env_flags(r), "--env_eval_freq=0",
     ]  # fmt: skip
     environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
     start, cpu = time.perf_counter(), _children_cpu()
@@ -195,6 +201,31 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
     # on one thread, its CPU time is what it took of one core, however loaded the machine
     _cpu_file(out, round_).write_text(f"{_children_cpu() - cpu:.0f}\n")
     return time.perf_counter() - start
+
+
+def env_flags(recipe: Recipe) -> list[str]:
+    """The plugin's env of the recipe's task, as lerobot-train saves it beside a checkpoint
+    (where `pyramid-sim evaluate` reads it) and as lerobot-eval takes it."""
+    r = recipe
+    height, width = r.image_size
+    return [
+        "--env.type=pyramid_sim", f"--env.robot={r.robot}", f"--env.task={r.structure}",
+        f"--env.layers={r.layers}", f"--env.variation={r.variation}", f"--env.fps={r.fps}",
+        f"--env.action_mode={r.action_mode}", f"--env.cameras={json.dumps(list(r.cameras))}",
+        f"--env.observation_height={height}", f"--env.observation_width={width}",
+        *([f"--env.episode_length={r.max_steps}"] if r.max_steps else []),
+    ]  # fmt: skip
+
+
+def lerobot_eval_line(checkpoint: Path, out: Path, recipe: Recipe) -> str:
+    """The lerobot-eval command that scores `checkpoint` on the evaluation's seeds:
+    lerobot-eval takes no env from a checkpoint (its --config_path refuses a train_config),
+    so the env's flags are repeated."""
+    return shlex.join([
+        "lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu", *env_flags(recipe),
+        f"--eval.n_episodes={recipe.episodes}", "--eval.batch_size=1",
+        f"--seed={EVAL_FIRST_SEED}", f"--output_dir={out / 'lerobot_eval'}",
+    ])  # fmt: skip
 
 
 def training(out: Path, round_: int) -> Path:
@@ -365,6 +396,7 @@ def result(
         "versions": evaluation["versions"],
         "recipe": asdict(recipe),
         "command": f"python benchmarks/baseline.py --row {recipe.row} --out DIR",
+        "lerobot_eval": lerobot_eval_line(Path("DIR/CHECKPOINT"), Path("DIR"), recipe),
         "finished": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }  # fmt: skip
 
@@ -381,6 +413,7 @@ def main(argv: list[str] | None = None) -> int:
         if cpu:
             seconds["train_cpu"] = sum(float(p.read_text()) for p in cpu)
         last = checkpoint(out, len(recipe.rounds))
+        (out / "lerobot_eval.txt").write_text(lerobot_eval_line(last, out, recipe) + "\n")
         start = time.perf_counter()
         scores = score(last, recipe, recipe.episodes, out)
         seconds["evaluate"] = time.perf_counter() - start

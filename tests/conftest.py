@@ -165,3 +165,52 @@ def fake_build(monkeypatch):
     monkeypatch.setitem(sys.modules, "pyramid_sim.jobs.build", jobs)
     monkeypatch.setenv("MUJOCO_GL", "egl")  # a --video run chooses no backend of its own
     return fake
+
+
+def write_checkpoint(
+    folder, *, action=12, state=16, dataset=None, env=None, train=True, output_dir=None
+):
+    """A lerobot checkpoint's files as `checkpoint_inputs` reads them, weightless: config.json
+    (its features' widths), and train_config.json naming `dataset` (a folder written by
+    `write_recording`, or any path) and holding `env` (the plugin's fields), unless not
+    `train`. Returns the folder, as text."""
+    import json
+
+    folder.mkdir(parents=True)
+    features = {"observation.state": {"type": "STATE", "shape": [state]}}
+    config = {"type": "act", "input_features": features,
+              "output_features": {"action": {"type": "ACTION", "shape": [action]}}}  # fmt: skip
+    (folder / "config.json").write_text(json.dumps(config))
+    if train:
+        doc = {"dataset": {"repo_id": "local/demos", "root": None if dataset is None
+                           else str(dataset)},
+               "env": None if env is None else {"type": "pyramid_sim", **env},
+               "output_dir": str(output_dir or folder.parent)}  # fmt: skip
+        (folder / "train_config.json").write_text(json.dumps(doc))
+    return str(folder)
+
+
+def write_recording(root, *, robot_type="panda_bimanual", fps=10, **doc):
+    """The metadata a `pyramid-sim record` dataset keeps of itself: meta/info.json (lerobot's
+    fps and robot_type) and meta/pyramid_sim/dataset.json (`doc` over a 2-brick anchored
+    recording's)."""
+    import json
+
+    (root / "meta" / "pyramid_sim").mkdir(parents=True)
+    (root / "meta" / "info.json").write_text(json.dumps({"fps": fps, "robot_type": robot_type}))
+    ours = {"structure": "pyramid-even", "size": {"layers": 1}, "variation": "layout",
+            "action_mode": "anchored", **doc}  # fmt: skip
+    (root / "meta" / "pyramid_sim" / "dataset.json").write_text(json.dumps(ours))
+    return root
+
+
+@pytest.fixture
+def checkpoint():
+    """`write_checkpoint`, for the tests of what a checkpoint was trained on."""
+    return write_checkpoint
+
+
+@pytest.fixture
+def recording():
+    """`write_recording`."""
+    return write_recording

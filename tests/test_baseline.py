@@ -205,3 +205,32 @@ def test_the_result_file_holds_the_score_its_inputs_and_where_it_ran(tmp_path):
     assert doc["command"] == "python benchmarks/baseline.py --row panda-2 --out DIR"
     assert len(doc["commit"].split("+")[0]) == 40 and doc["machine"]["cores"] >= 1
     assert doc["recipe"]["row"] == "panda-2" and doc["versions"] == {"pyramid_sim": "x"}
+
+
+def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_scores_it(tmp_path, monkeypatch):
+    """lerobot-train saves the plugin's env in each checkpoint's train_config.json (where
+    `pyramid-sim evaluate` reads it), never running it; lerobot-eval reads no env from a
+    checkpoint, so the line that scores it repeats the env's flags, and the seeds."""
+    import shlex
+
+    _records(tmp_path, [True])
+    commands = []
+
+    def fake_run(command, **_):
+        commands.append(command)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    recipe = baseline.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
+    baseline.train(tmp_path, recipe)
+    env = ["--env.type=pyramid_sim", "--env.robot=panda", "--env.task=pyramid-even",
+           "--env.layers=1", "--env.variation=layout", "--env.fps=10",
+           "--env.action_mode=anchored", '--env.cameras=["overview"]',
+           "--env.observation_height=96", "--env.observation_width=96",
+           "--env.episode_length=300"]  # fmt: skip
+    assert [a for a in commands[0] if a.startswith("--env")] == [*env, "--env_eval_freq=0"]
+    checkpoint = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model"
+    line = shlex.split(baseline.lerobot_eval_line(checkpoint, tmp_path, recipe))
+    assert line[:3] == ["lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu"]
+    assert line[3:14] == env and "--seed=100000" in line and "--eval.n_episodes=100" in line
+    assert [a for a in baseline.env_flags(baseline.Recipe()) if "length" in a] == []

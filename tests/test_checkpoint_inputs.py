@@ -1,12 +1,22 @@
-"""A lerobot checkpoint trained on cameras is evaluated with those cameras at their size, read
-from its config.json; a checkpoint without images, or a named policy, asks for none."""
+"""A lerobot checkpoint is evaluated as it was trained: with the cameras it saw at their size,
+read from its config.json (a checkpoint without images, or a named policy, asks for none), and
+on the robot, structure, size, variation, rate and action mode its training saw where they are
+not given; a given one that contradicts them is refused naming both, and a checkpoint that
+does not say is refused naming the flags it needs."""
 
 import json
 
 import pytest
 
+import pyramid_sim
 from pyramid_sim.errors import ConfigError
-from pyramid_sim.learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
+from pyramid_sim.learning.lerobot_plugin.checkpoint_inputs import (
+    DEFAULTS,
+    Task,
+    action_entries,
+    checkpoint_task,
+    checkpoint_views,
+)
 
 
 def _checkpoint(folder, features):
@@ -46,3 +56,117 @@ def test_an_unreadable_config_is_one_line(tmp_path):
     (tmp_path / "c" / "config.json").write_text("{not json")
     with pytest.raises(ConfigError, match="cannot be read"):
         checkpoint_views(str(tmp_path / "c"))
+
+
+def test_what_is_not_given_is_what_training_saw(tmp_path, checkpoint, recording):
+    demos = recording(tmp_path / "demos")
+    folder = checkpoint(tmp_path / "c", dataset=demos)
+    assert checkpoint_task(folder, Task()) == Task(
+        "panda", "pyramid-even", {"layers": 1}, "layout", 10, "anchored"
+    )
+    agreeing = Task("panda", "pyramid-even", {"layers": 1}, None, 10, "anchored")
+    assert checkpoint_task(folder, agreeing) == checkpoint_task(folder, Task())
+
+
+def test_another_variation_is_a_test_of_other_episodes_not_a_contradiction(
+    tmp_path, checkpoint, recording
+):
+    """docs/benchmark.md's robustness probe: the layout-trained policy scored at `full`."""
+    folder = checkpoint(tmp_path / "c", dataset=recording(tmp_path / "demos"))
+    assert checkpoint_task(folder, Task(variation="full")).variation == "full"
+
+
+@pytest.mark.parametrize(
+    "given, words",
+    [(Task(fps=25), "fps: 25 given, but the checkpoint was trained with 10"),
+     (Task(action_mode="joint"), "action mode: joint given, but the checkpoint was trained "
+      "with anchored"),
+     (Task(robot="so101"), "robot: so101 given, but the checkpoint was trained with panda"),
+     (Task(structure="pyramid"), "structure: pyramid given, but the checkpoint was trained "
+      "with pyramid-even"),
+     (Task(size={"layers": 2}), "layers: 2 given, but the checkpoint was trained with 1")],
+)  # fmt: skip
+def test_a_given_value_that_contradicts_training_is_refused_naming_both(
+    tmp_path, checkpoint, recording, given, words
+):
+    demos = recording(tmp_path / "demos")
+    folder = checkpoint(tmp_path / "c", dataset=demos)
+    with pytest.raises(ConfigError, match=words) as refused:
+        checkpoint_task(folder, given)
+    assert f"(read from its dataset {str(demos)!r}); accepted" in str(refused.value)
+
+
+def test_a_checkpoint_that_does_not_say_needs_its_mode_and_rate_given(tmp_path, checkpoint):
+    folder = checkpoint(tmp_path / "c", train=False)
+    with pytest.raises(ConfigError) as refused:
+        checkpoint_task(folder, Task())
+    line = str(refused.value)
+    assert line.startswith(f"policy: {folder!r} does not say how it was trained")
+    assert "accepted --action-mode anchored (what its 12 actions fit) and --fps (10, 20" in line
+    with pytest.raises(ConfigError, match="accepted --fps \\(10, 20, 25, 50 or 100"):
+        checkpoint_task(folder, Task(action_mode="anchored"))
+    settled = checkpoint_task(folder, Task(action_mode="anchored", fps=10))
+    assert settled == Task("panda", "pyramid-even", {}, "layout", 10, "anchored")
+
+
+def test_an_so101_action_fits_three_modes_and_each_is_named(tmp_path, checkpoint):
+    folder = checkpoint(tmp_path / "c", action=12, state=12, train=False)
+    with pytest.raises(ConfigError, match="--action-mode joint or relative or anchored"):
+        checkpoint_task(folder, Task(robot="so101"))
+
+
+def test_a_mode_whose_width_is_not_the_actions_is_refused(tmp_path, checkpoint):
+    """What a user met as `operands could not be broadcast together with shapes
+    (12,) (16,)` after the first step: now one line before anything runs."""
+    folder = checkpoint(tmp_path / "c", action=12, train=False)
+    with pytest.raises(
+        ConfigError,
+        match="action mode: joint acts with 16 entries on panda, but the checkpoint's action "
+        "has 12; accepted anchored",
+    ):
+        checkpoint_task(folder, Task(action_mode="joint", fps=10))
+    wide = checkpoint(tmp_path / "w", action=14, train=False)
+    with pytest.raises(ConfigError, match="accepted its robot's \\(none of panda's modes has 14"):
+        checkpoint_task(wide, Task(action_mode="joint", fps=10))
+
+
+def test_the_action_widths_are_the_plugins():
+    modes = ("joint", "relative", "waypoint", "anchored")
+    assert [action_entries("panda", m) for m in modes] == [16, 16, 10, 12]
+    assert action_entries("so101", "joint") == 12 and action_entries("panda", "ee") is None
+
+
+def test_a_policy_that_is_no_checkpoint_takes_the_defaults(tmp_path):
+    assert checkpoint_task("expert", Task()) == DEFAULTS
+    assert checkpoint_task(str(tmp_path), Task(fps=50)).fps == 50  # no config.json: none
+
+
+def test_the_api_refuses_a_contradiction_before_anything_runs(tmp_path, checkpoint, recording):
+    folder = checkpoint(tmp_path / "c", dataset=recording(tmp_path / "demos"))
+    with pytest.raises(ConfigError, match="fps: 25 given"):
+        pyramid_sim.evaluate(folder, fps=25, out=tmp_path / "never")
+    assert not (tmp_path / "never").exists()
+
+
+@pytest.mark.parametrize(
+    "flags, words",
+    [(["--fps", "25"], "fps: 25 given, but the checkpoint was trained with 10"),
+     (["--action-mode", "relative"], "action mode: relative given"),
+     (["--layers", "2"], "layers: 2 given, but the checkpoint was trained with 1")],
+)  # fmt: skip
+def test_the_command_refuses_a_contradicting_flag_in_one_line(
+    tmp_path, checkpoint, recording, refused, flags, words
+):
+    folder = checkpoint(tmp_path / "c", dataset=recording(tmp_path / "demos"))
+    out = tmp_path / "never"
+    line = refused(["evaluate", "--policy", folder, *flags, "--out", str(out)])
+    assert line.startswith(f"pyramid-sim: error: {words}") and not out.exists()
+
+
+def test_the_command_names_the_flags_a_checkpoint_that_does_not_say_needs(
+    tmp_path, checkpoint, refused
+):
+    folder = checkpoint(tmp_path / "c", action=10, train=False)
+    line = refused(["evaluate", "--policy", folder, "--out", str(tmp_path / "never")])
+    assert "accepted --action-mode waypoint (what its 10 actions fit) and --fps" in line
+    assert not (tmp_path / "never").exists()

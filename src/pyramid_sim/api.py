@@ -241,17 +241,17 @@ EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "ma
 
 def evaluate(
     policy: str = "expert",
-    name: str = "pyramid-even",
+    name: str | None = None,
     *,
     out: str | Path | None = None,
     arms: ArmChoice = "both",
-    variation: str = DEFAULT_VARIATION,
-    fps: int = 25,
+    variation: str | None = None,
+    fps: int | None = None,
     episodes: int = 10,
     seed: int = EVAL_FIRST_SEED,
     video: int = 0,
     max_steps: int | None = None,
-    action_mode: str = "joint",
+    action_mode: str | None = None,
     workers: int = 1,
     backend: str = "process",
     ray_address: str | None = None,
@@ -263,28 +263,37 @@ def evaluate(
     on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
-    `action_mode` (one of `choices.ACTION_MODES`: as it was trained) and a checkpoint seeing
-    the cameras it was trained on; `workers` episodes at once, in processes or as Ray tasks
-    (`backend="ray"`, on the cluster at `ray_address` or a Ray started here), scoring as one
-    worker does. `options` as for `build`. Returns the `Evaluation` (its scores as
-    evaluation.json has them)."""
-    config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
-    from .learning.evaluation.evaluate import EvaluateConfig
-    from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
+    `action_mode` (one of `choices.ACTION_MODES`). A checkpoint is evaluated as it was trained:
+    its cameras, and the robot, structure, size, variation, fps and action mode its training
+    saw where not given (a given one that contradicts it is refused, but the variation);
+    otherwise pyramid-even, layout, 25 and joint. `workers` episodes run at once, in processes
+    or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray started here),
+    scoring as one worker does. `options` as for `build`. Returns the `Evaluation` (its scores
+    as evaluation.json has them)."""
+    from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
 
-    sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
+    options = dict(options)
+    sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
+    robot = config.robot if config is not None else options.get("robot")
+    task = checkpoint_task(policy, Task(robot, name, sizes, variation, fps, action_mode))
+    assert task.structure is not None and task.variation is not None and task.fps is not None
+    if config is None:
+        options["robot"] = task.robot
+    config, spec = resolve(task.structure, config, {**options, **task.size}, own=EVALUATE_KEYWORDS)
+    from .learning.evaluation.evaluate import EvaluateConfig
+
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
         policy,
-        name,
-        {**sizes, **views, "arms": arms, "config": config},
-        variation,
-        fps,
+        task.structure,
+        {**task.size, **views, "arms": arms, "config": config},
+        task.variation,
+        task.fps,
         episodes,
         seed,
         video,
         max_steps,
-        action_mode,
+        task.action_mode or "joint",
         workers,
         backend,
         ray_address,

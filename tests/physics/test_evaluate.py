@@ -186,8 +186,45 @@ def test_a_checkpoint_folder_needs_lerobot_and_says_so(refused, tmp_path, monkey
     checkpoint.mkdir()
     (checkpoint / "config.json").write_text("{}")
     out = tmp_path / "never"
-    line = refused(["evaluate", "--policy", str(checkpoint), "--out", str(out)])
+    flags = ["--action-mode", "joint", "--fps", "25"]  # it says nothing of its training
+    line = refused(["evaluate", "--policy", str(checkpoint), *flags, "--out", str(out)])
     assert "needs lerobot, which is not installed here" in line and not out.exists()
+
+
+def test_a_checkpoint_is_evaluated_on_what_its_recording_was(tmp_path, checkpoint, monkeypatch):
+    """`pyramid-sim evaluate --policy CKPT` with no flags: the structure, size, rate and action
+    mode of the recording its train_config.json names (here a real one; the policy a stand-in
+    that holds still, lerobot not being needed to read a checkpoint's training)."""
+    from pyramid_sim.cli import main
+    from pyramid_sim.learning.evaluation.policies import HoldStill
+    from pyramid_sim.learning.lerobot_plugin import lerobot_policy
+    from pyramid_sim.learning.lerobot_plugin.checkpoint_training import DATASET_DOC as read
+    from pyramid_sim.learning.recording.record import DATASET_DOC
+
+    assert read == DATASET_DOC  # where the reader looks is where `record` writes
+    demos = tmp_path / "demos"
+    pyramid_sim.record(demos, "pyramid-even", episodes=1, cameras=(), fps=10,
+                       action_mode="anchored", **TASK)  # fmt: skip
+    folder = checkpoint(tmp_path / "c", action=12, dataset=demos)
+    monkeypatch.setattr(lerobot_policy, "LerobotPolicy", lambda _, env: HoldStill(env))
+    out = tmp_path / "scored"
+    flags = ["--episodes", "1", "--max-steps", "3", "--quiet", "--out", str(out)]
+    assert main(["evaluate", "--policy", folder, *flags]) == 0
+    task = json.loads((out / "evaluation.json").read_text())["task"]
+    assert (task["structure"], task["size"], task["robot"]) == ("pyramid-even", TASK, "panda")
+    assert (task["fps"], task["action_mode"], task["variation"]) == (10, "anchored", "layout")
+
+
+def test_lerobots_view_renders_the_overview_at_a_films_size_whatever_the_policy_sees():
+    """lerobot-eval films every evaluation: a state-only policy's environment gives it frames
+    (it wrote tracebacks and listed films that were never written when given None)."""
+    env = gymnasium.make(pyramid_sim.LEROBOT_ENV_ID, structure="pyramid-even", cameras=(),
+                         max_episode_steps=10, **TASK)  # fmt: skip
+    obs, _ = env.reset(seed=0)
+    frame = env.render()
+    assert "pixels" not in obs and frame.shape == (480, 640, 3) and frame.dtype == np.uint8
+    assert frame.mean() > 60 and frame.std() > 10  # the scene, not a blank
+    env.close()
 
 
 def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):

@@ -32,7 +32,8 @@ SPARE_BRICKS = pyramid_sim.SimConfig().spare_bricks  # in the magazine beside th
 @dataclass
 class PyramidSimEnv(EnvConfig):
     """The task is a structure (pyramid, pyramid-even, wall, ...); `layers` its size, and the
-    rest as `pyramid-sim record` takes them. `episode_length` is the step limit, at `fps`."""
+    rest as `pyramid-sim record` takes them. `episode_length` is the step limit, at `fps`:
+    by default `pyramid-sim evaluate`'s, 30 s a brick and 30 s more."""
 
     task: str | None = "pyramid-even"
     layers: int = 1
@@ -41,7 +42,7 @@ class PyramidSimEnv(EnvConfig):
     # state-only one: --env.cameras='[]').
     variation: str = DEFAULT_VARIATION
     fps: int = RECORD_FPS
-    episode_length: int = 2250  # 90 s at 25 fps: 30 s a brick and 30 s more for two bricks
+    episode_length: int | None = None  # 2250 for two bricks at 25 fps
     cameras: tuple[str, ...] = RECORD_CAMERAS  # as `record --cameras`
     observation_height: int = RECORD_IMAGE_SIZE[0]
     observation_width: int = RECORD_IMAGE_SIZE[1]
@@ -51,6 +52,10 @@ class PyramidSimEnv(EnvConfig):
 
     def __post_init__(self) -> None:
         bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
+        if self.episode_length is None:  # MuJoCo's import: only when this env is asked for
+            from pyramid_sim.learning.recording.episode import step_limit
+
+            self.episode_length = step_limit(bricks, self.fps)
         # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
         motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
         # a waypoint is each hand's x, y, z, yaw and gap; an anchored one its anchor too

@@ -10,11 +10,13 @@ from ..output.files import removed_if_failed
 from ..output.lock import holding
 from ..params import MAX_STEPS, WORKERS
 from .args import (
+    SIZE_FLAGS,
     add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
+    size_options,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
@@ -27,7 +29,9 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         default="expert",
         metavar="POLICY",
         help="expert, zero (hold still), random, module:factory (called with the environment), "
-        "or a lerobot checkpoint folder (where lerobot is installed) (default expert)",
+        "or a lerobot checkpoint folder (where lerobot is installed), evaluated on the robot, "
+        "structure, size, variation, fps and action mode it was trained on unless given "
+        "(default expert)",
     )
     add_structure_args(p)
     add_physics_args(
@@ -60,12 +64,15 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
     )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/evaluation"))
+    # not given: a checkpoint's training says, else the defaults the help names
+    p.set_defaults(robot=None, structure=None, variation=None, fps=None, action_mode=None)
 
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """Score the policy; writes DIR/evaluation.json and prints its summary line."""
     import pyramid_sim
 
+    args = as_trained(args)
     config, spec, sizes = episode_inputs(args, "evaluated")
     with (
         removed_if_failed([args.out]),
@@ -94,3 +101,18 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         )
     print(evaluation.line())
     return 0
+
+
+def as_trained(args: argparse.Namespace) -> argparse.Namespace:
+    """The flags, those not given filled as the policy was trained (a checkpoint's) or with
+    the defaults; ConfigError for one that contradicts a checkpoint's training."""
+    from ..learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task
+
+    given = Task(
+        args.robot, args.structure, size_options(args), args.variation, args.fps, args.action_mode
+    )
+    task = checkpoint_task(args.policy, given)
+    sizes = {SIZE_FLAGS[k][0][2:].replace("-", "_"): v for k, v in task.size.items()}
+    settled = {"robot": task.robot, "structure": task.structure, "variation": task.variation,
+               "fps": task.fps, "action_mode": task.action_mode}  # fmt: skip
+    return argparse.Namespace(**{**vars(args), **sizes, **settled})

@@ -2,7 +2,8 @@
 through the `lerobot_env_pyramid_sim` plugin in plugins/): the observation under lerobot's
 keys, `agent_pos` (observation.state), `environment_state` (observation.environment_state, the
 bricks' poses and the targets', flattened as `record` writes them) and `pixels` (each camera's image,
-observation.images.<camera>), and the task's text. No lerobot import: it is a client."""
+observation.images.<camera>), and the task's text; `render()` films the overview camera. No
+lerobot import: it is a client."""
 
 from __future__ import annotations
 
@@ -92,5 +93,8 @@ def lerobot_keys(observation: dict[str, Any], units: LerobotUnits) -> dict[str, 
 
 def make_lerobot_env(structure: str = "pyramid-even", **options: Any) -> LerobotView:
     """`gymnasium.make(LEROBOT_ENV_ID, ...)`'s environment: a BuildEnv of `options` as lerobot
-    sees it."""
-    return LerobotView(BuildEnv(structure, **options))
+    sees it. It renders the overview camera at a film's size (640 x 480, as `evaluate
+    --video`) whatever the policy observes: lerobot-eval films every evaluation, and writes
+    a film of frames it was not given as a traceback and a missing file. The renderer is made
+    at the first frame asked for."""
+    return LerobotView(BuildEnv(structure, **{"render_mode": "rgb_array", **options}))

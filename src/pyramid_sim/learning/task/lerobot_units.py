@@ -39,12 +39,18 @@ def own_units(names: tuple[str, ...], robot_type: str) -> LerobotUnits:
     return LerobotUnits(names, robot_type, np.ones(n), np.zeros(n))
 
 
+def robot_type(robot: RobotDescription) -> str:
+    """The `robot_type` a recording of `robot` names in its info.json: lerobot's own for a
+    robot it has, else ours (`panda_bimanual`)."""
+    return robot.lerobot_robot_type or f"{robot.name}_bimanual"
+
+
 def lerobot_units(robot: RobotDescription, names: tuple[str, ...]) -> LerobotUnits:
     """The units of `robot`'s state and command, whose entries are `names` (each arm's joints,
     then its gripper, left arm first, as the environment's layout has them)."""
     n = len(names)
     if not robot.lerobot_motors:
-        return own_units(names, f"{robot.name}_bimanual")
+        return own_units(names, robot_type(robot))
     per_arm = len(robot.lerobot_motors)
     assert n == per_arm * len(ARMS), (names, robot.lerobot_motors)
     (gain,) = robot.finger_gains  # one jaw: its gap is gain x its joint angle
@@ -59,6 +65,4 @@ def lerobot_units(robot: RobotDescription, names: tuple[str, ...]) -> LerobotUni
             else:  # radians -> degrees
                 scale.append(180.0 / math.pi)
                 offset.append(0.0)
-    return LerobotUnits(
-        tuple(lerobot_names), robot.lerobot_robot_type, np.array(scale), np.array(offset)
-    )
+    return LerobotUnits(tuple(lerobot_names), robot_type(robot), np.array(scale), np.array(offset))
