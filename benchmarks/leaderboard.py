@@ -26,9 +26,10 @@ COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
 TRACK_ORDER = {"keypose": 0, "continuous": 1}
 
 
-def load(folder: Path = RESULTS) -> list[dict[str, Any]]:
-    """The result files, in the table's order."""
-    rows = [json.loads(p.read_text()) for p in sorted(folder.glob("*.json"))]
+def load(folder: Path | None = None) -> list[dict[str, Any]]:
+    """The result files (of benchmarks/results/ by default), in the table's order."""
+    found = sorted((folder or RESULTS).glob("*.json"))
+    rows = [json.loads(p.read_text()) for p in found]
     return sorted(rows, key=lambda r: (TRACK_ORDER.get(r["track"], 9), -r["score"]["success_rate"],
                                        r["row"]))  # fmt: skip
 

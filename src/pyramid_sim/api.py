@@ -206,9 +206,10 @@ def record(
     `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
     layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once, in
     processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
-    started here). With `noise` (rad), what is executed is the expert's joint targets plus an
-    offset drawn each second, the label the expert's, planned from where the arm is (DART); a
-    build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
+    started here). With `noise` (rad on each joint in the joint and relative modes, m on each
+    hand's x, y and z in the waypoint and anchored modes), what is executed is the expert's
+    action plus an offset drawn each second, the label the expert's, planned from where the
+    arm is (DART); a build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
     action as its change from the frame's state. With `policy` (as `evaluate` takes one: a
     lerobot checkpoint folder, zero, random, module:factory), a DAgger round: the policy
     drives each 2 s span the expert does not (the expert drives a share `beta` of them) and

@@ -1,0 +1,72 @@
+"""docs/benchmark.md's leaderboard is the committed result files' table, never a number typed:
+the page holds the table benchmarks/leaderboard.py writes from benchmarks/results/, and the
+table's cells are each file's own figures."""
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import leaderboard  # noqa: E402
+
+
+def _row(name, track, successes, cpu=600.0, rounds=()):
+    return {
+        "row": name,
+        "track": track,
+        "task": {"structure": "pyramid-even", "layers": 2, "bricks": 6, "variation": "full"},
+        "robot": "panda",
+        "policy": "ACT (lerobot-train)",
+        "action_mode": "anchored",
+        "inputs": ["state", "environment_state"],
+        "demos": {"recorded": 200, "built": 150, "dagger_rounds": list(rounds)},
+        "score": {"episodes": 100, "successes": successes, "success_rate": successes / 100,
+                  "success_rate_95": [0.4, 0.6], "bricks_placed_mean": 4.5},
+        "training_steps": 9000,
+        "seconds": {"train_cpu": cpu},
+        "machine": {"cores": 2, "gpu": None},
+        "commit": "0123456789abcdef0123456789abcdef01234567",
+        "command": f"python benchmarks/baseline.py --row {name} --out DIR",
+    }  # fmt: skip
+
+
+def test_the_page_holds_the_committed_results_table():
+    assert leaderboard.main(["--check"]) == 0, "run python benchmarks/leaderboard.py"
+    page = leaderboard.PAGE.read_text()
+    for path in leaderboard.RESULTS.glob("*.json"):
+        row = json.loads(path.read_text())
+        assert f"`{row['command']}`" in page and row["row"] in row["command"]
+
+
+def test_each_cell_is_its_files_figure_and_the_rows_are_ordered(tmp_path):
+    (tmp_path / "a.json").write_text(json.dumps(_row("a", "continuous", 90)))
+    (tmp_path / "b.json").write_text(json.dumps(_row("b", "keypose", 40, 3600.0, [
+        {"episodes": 100, "beta": 0.5, "steps": 2000}])))  # fmt: skip
+    (tmp_path / "c.json").write_text(json.dumps(_row("c", "keypose", 55)))
+    lines = leaderboard.table(leaderboard.load(tmp_path)).splitlines()
+    assert [line.split("--row ")[1].split()[0] for line in lines[2:]] == ["c", "b", "a"]
+    b = lines[3]
+    assert "**40/100** (40-60 %), 4.50 bricks placed" in b
+    assert "150 of 200 built + 100 DAgger (1 rounds)" in b
+    assert "9000 steps, 60 min of one core (2-core CPU, no GPU)" in b
+    assert "pyramid-even 2 (6 bricks, full)" in b and "| 0123456 |" in b
+
+
+def test_a_page_without_the_marks_is_refused(tmp_path):
+    with pytest.raises(SystemExit, match="marks"):
+        leaderboard.page_with("# no table here\n", [])
+
+
+def test_a_page_out_of_step_with_the_results_fails_the_check(tmp_path, monkeypatch, capsys):
+    page = tmp_path / "benchmark.md"
+    page.write_text(f"x\n{leaderboard.START}\n| stale |\n{leaderboard.END}\n")
+    results = tmp_path / "results"
+    results.mkdir()
+    (results / "c.json").write_text(json.dumps(_row("c", "keypose", 55)))
+    monkeypatch.setattr(leaderboard, "PAGE", page)
+    monkeypatch.setattr(leaderboard, "RESULTS", results)
+    assert leaderboard.main(["--check"]) == 1
+    assert leaderboard.main([]) == 0 and leaderboard.main(["--check"]) == 0
+    assert "**55/100**" in page.read_text()
