@@ -27,6 +27,21 @@ def test_an_arms_next_target_is_its_first_unplaced_then_its_last_and_none_for_an
     np.testing.assert_array_equal(done[2], np.zeros(4))  # an arm that places none
 
 
+def test_an_arm_whose_hand_is_over_the_target_it_placed_last_works_on_it_yet():
+    """Its release and its rise off the brick are given from that target: within RADIUS
+    across the table of it (at any height) the arm's next is still it; once the hand has
+    left, the next unplaced one (the tools' x and y are all that count)."""
+    orders = [[0, 2], [1]]
+    over = np.array([[*(GOALS[0][:2] + [RADIUS * 0.9, 0.0]), 0.4, 0.0], CLEARS[1]])
+    rows = next_targets(orders, GOALS, {0}, over)
+    np.testing.assert_array_equal(rows[0], GOALS[0])
+    np.testing.assert_array_equal(rows[1], GOALS[1])  # the right arm has placed none yet
+    left = np.array([[*(GOALS[0][:2] + [RADIUS * 1.1, 0.0]), 0.11, 0.0], CLEARS[1]])
+    np.testing.assert_array_equal(next_targets(orders, GOALS, {0}, left)[0], GOALS[2])
+    # every target placed: the last, wherever the hand is
+    np.testing.assert_array_equal(next_targets(orders, GOALS, {0, 2}, over)[0], GOALS[2])
+
+
 def _anchors():
     return anchor_poses(PICK, CLEARS, next_targets([[0], [1]], GOALS, ()))
 

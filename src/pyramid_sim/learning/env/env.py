@@ -250,14 +250,15 @@ class BuildEnv(gymnasium.Env):
 def observe(env: BuildEnv) -> dict[str, Any]:
     """What a policy sees now: the entries of the environment's observation space."""
     loop = env.loop
+    tools = lay.tools(loop.data, loop.handles)
     observed: dict[str, Any] = {
         "state": env.measured_state(),
         "bricks": loop.data.qpos[env._brick_q],
         "pick": pick(env.plan),
         "goals": env.goals.copy(),
         "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
-        "next": next_of(env.plan, env.goals, env.placing.placed),
-        "tools": lay.tools(loop.data, loop.handles),
+        "next": next_of(env.plan, env.goals, env.placing.placed, tools),
+        "tools": tools,
         "held": loop.custody.holds(loop.data),
     }
     if env.cameras:

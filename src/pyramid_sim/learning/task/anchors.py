@@ -32,16 +32,31 @@ DEAD = 0.15  # of an anchor's unit around each integer that is that frame exactl
 
 
 def next_targets(
-    orders: Sequence[Sequence[int]], goals: np.ndarray, placed: Collection[int]
+    orders: Sequence[Sequence[int]],
+    goals: np.ndarray,
+    placed: Collection[int],
+    tools: np.ndarray | None = None,
 ) -> np.ndarray:
     """Each arm's next target (x, y, z, yaw), left first: the first of the arm's targets
     (`orders`: its build-order indices) that holds no brick yet, its last once all do, zeros
     for an arm that places none. The build order and which arm places which brick are the
-    task's: the observation says which target each arm works towards."""
+    task's: the observation says which target each arm works towards.
+
+    With the hands' `tools` (x, y, ... each), an arm whose hand is still within `RADIUS`
+    across the table of the target it placed last works on it yet: its release and the rise
+    off the brick are given from that target, not from a clear pose tens of centimetres away
+    (whose offset to the brick changes with the layout, and which a learner cannot regress to
+    the millimetres that keep its fingers off the brick it has just let go)."""
     rows = []
-    for order in orders:
+    for k, order in enumerate(orders):
         waiting = [i for i in order if i not in placed]
-        rows.append(goals[waiting[0] if waiting else order[-1]] if order else np.zeros(4))
+        done = [i for i in order if i in placed]
+        row = goals[waiting[0] if waiting else order[-1]] if order else np.zeros(4)
+        if tools is not None and waiting and done:
+            last = goals[done[-1]]
+            if np.hypot(*(tools[k][:2] - last[:2])) < RADIUS:
+                row = last
+        rows.append(row)
     return np.array(rows, dtype=np.float64).reshape(len(orders), 4)
 
 

@@ -63,10 +63,12 @@ def goals(plan: Any) -> np.ndarray:
     return np.array([[*b.target.pose.position, b.target.pose.yaw] for b in ordered])
 
 
-def next_of(plan: Any, goals: np.ndarray, placed: Collection[int]) -> np.ndarray:
+def next_of(
+    plan: Any, goals: np.ndarray, placed: Collection[int], tools: np.ndarray | None = None
+) -> np.ndarray:
     """Each arm's next target (`GOAL_FIELDS`), left first, with `placed` (build-order indices)
-    holding a brick: `anchors.next_targets` of the plan's arms."""
-    return next_targets([sorted(plan.arm_order(arm)) for arm in ARMS], goals, placed)
+    holding a brick and the hands at `tools`: `anchors.next_targets` of the plan's arms."""
+    return next_targets([sorted(plan.arm_order(arm)) for arm in ARMS], goals, placed, tools)
 
 
 def joint_space(layout: lay.Layout) -> spaces.Box:
