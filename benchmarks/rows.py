@@ -89,7 +89,7 @@ ROWS: dict[str, Recipe] = {
         # the six-brick pyramid: DART's 5 mm over six bricks leaves a third of the demos
         # built, 3 mm two thirds; ACT trained on them, then DAgger's rounds
         Recipe(
-            row="panda-6", layers=2, demos=300, noise=0.003, steps=10000, save_every=2000
+            row="panda-6", layers=2, demos=220, noise=0.003, steps=10000, save_every=2000
         ),  # fmt: skip
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
