@@ -84,3 +84,23 @@ def test_an_anchor_near_an_integer_is_that_frame_and_between_two_slides_from_one
     np.testing.assert_allclose(quarter, 0.75 * frames[0] + 0.25 * frames[1])
     world = to_world(np.array([1.5, 0, 0, 0.1, 0, 0.0] * 2), _anchors())
     np.testing.assert_allclose(world[:3], (frames[1][:3] + frames[2][:3]) / 2 + [0, 0, 0.1])
+
+
+def test_a_hand_turned_half_round_from_its_target_is_labelled_one_way_every_time():
+    """The SO-101 pair's right arm sets its brick down with the hand turned half round from
+    the brick's yaw, its clear pose at 135 degrees: a hand a hair either side of the half
+    turn is labelled near +pi both times (wrapped to a half turn either way it was +pi and
+    -pi by turns), and the waypoint it asks for is the hand's yaw again, within a turn."""
+    clears = np.array([[0.3, 0.6, 0.4, 0.79], [0.3, -0.6, 0.4, 2.36]])
+    anchors = anchor_poses(PICK, clears, next_targets([[0], [1]], GOALS, ()))
+    target = GOALS[1]
+    labels = []
+    for hair in (-1e-3, 1e-3):
+        yaw = target[3] + np.pi + hair
+        hand = [*PICK[:3], PICK[3], 0.08, *target[:3], yaw, 0.0]
+        action = to_anchored(np.array(hand), anchors)
+        labels.append(action[10])
+        world = to_world(action, anchors)
+        assert abs(np.remainder(world[8] - yaw + np.pi, 2 * np.pi) - np.pi) < 1e-6
+    assert labels[0] == pytest.approx(np.pi - 1e-3, abs=1e-6)
+    assert labels[1] == pytest.approx(np.pi + 1e-3, abs=1e-6)

@@ -85,16 +85,33 @@ def to_world(action: np.ndarray, anchors: np.ndarray) -> np.ndarray:
     return np.array(world)
 
 
+def _near(yaw: float, reference: float) -> float:
+    """`yaw` turned by whole turns to within half a turn of `reference` (as it is if it is)."""
+    return (
+        yaw
+        if abs(yaw - reference) <= math.pi
+        else reference + math.remainder(yaw - reference, 2 * math.pi)
+    )
+
+
 def to_anchored(world: np.ndarray, anchors: np.ndarray) -> np.ndarray:
     """The anchored action for a waypoint action (float32): each hand's waypoint from the
     nearer of its pick location and next target within `RADIUS` across the table, else from
-    its clear pose."""
+    its clear pose.
+
+    The yaw's offset is the hand's yaw less the frame's, each taken within half a turn of
+    the arm's clear pose's yaw (its reference), not wrapped to a half turn either way: an arm
+    that sets its brick down with its hand turned half round from the brick's yaw (the
+    SO-101 pair's right) would otherwise be labelled +pi and -pi by turns, which a regression
+    averages into a hand turned across the brick. Where both yaws lie within half a turn of
+    the reference (the Panda pair's), the offset is the plain difference, as it was."""
     action = []
     for k, frames in enumerate(anchors):
         pose, gap = np.asarray(world[5 * k : 5 * k + 4], dtype=np.float64), world[5 * k + 4]
         reach = np.hypot(*(frames[[0, 2], :2] - pose[:2]).T)
         anchor = (0, 2)[int(np.argmin(reach))] if reach.min() < RADIUS else 1
         offset = pose - frames[anchor]
-        offset[3] = math.remainder(offset[3], 2 * math.pi)
+        reference = float(frames[1][3])
+        offset[3] = _near(float(pose[3]), reference) - _near(float(frames[anchor][3]), reference)
         action += [anchor, *offset, gap]
     return np.array(action, dtype=np.float32)
