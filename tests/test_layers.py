@@ -29,6 +29,7 @@ LEARNING_LAYERS = (
     ("lerobot_plugin",),  # what lerobot's tools load
     ("recording",),  # the expert's episodes as a dataset
     ("env", "dataset"),  # the Gymnasium environment; LeRobot's layout
+    ("expert",),  # the scripted builder as a policy, and its closed loop
     ("task",),  # what an episode is and what a policy sees
 )
 ENTRY_POINTS = ("cli", "perf")  # alone may import the package's namespace, as a user would

@@ -55,7 +55,7 @@ def test_a_waypoint_is_where_the_move_ends_not_the_next_step_of_it():
         if step is not None and step.name == "approach" and runner.started:
             labels.append(action[:3].copy())
             tools.append(env.loop.data.site_xpos[env.loop.handles.tcp_site["left"]].copy())
-            aimed = env.loop.feedback.aim("left", step.pose)
+            aimed = env.loop.closure.aim("left", step.pose)
             np.testing.assert_allclose(action[:3], aimed.position, atol=1e-6)
         env.step(action)
     assert len(labels) >= 3

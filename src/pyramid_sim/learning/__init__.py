@@ -3,6 +3,7 @@ scripts), each floor importing only those below it (tests/test_layers.py):
 
 - `task`: what an episode is and what a policy sees of it (variation, randomization, the
   observation's layout, spaces and named entries, the footprint, rewards and endings);
+- `expert`: the scripted builder's closed loop, given to each episode's build loop;
 - `env`: the build as a Gymnasium environment (`env.env.BuildEnv`, registered as
   `pyramid_sim/Build-v0` when pyramid_sim is imported), its action modes and the scripted
   builder as a policy (`env.expert`);
@@ -18,4 +19,4 @@ Importing the package imports none of its modules (the environment needs MuJoCo)
 names the rooms.
 """
 
-__all__ = ["dataset", "env", "evaluation", "lerobot_plugin", "recording", "task"]
+__all__ = ["dataset", "env", "evaluation", "expert", "lerobot_plugin", "recording", "task"]

@@ -24,8 +24,10 @@ import numpy as np
 
 from ...choices import HAND_ACTION_MODES, ArmChoice
 from ...options import resolve
+from ...output.result import Tolerances
 from ...params import LINGER
 from ...physics.loop import BuildLoop
+from ..expert.closure import expert_loop
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
@@ -57,6 +59,9 @@ class BuildEnv(gymnasium.Env):
     anchors = np.zeros((2, 3, 4))  # the anchored mode's frames, from each observation
     built_at: float | None = None  # sim time (s) of this episode's success
     footprints = True  # the targets drawn on the table for the cameras
+    tolerances = Tolerances()  # what a placement is judged by
+    _renderer: Any = None
+    _eyes: Any = None  # the cameras' renderer, made at the first observation
 
     def __init__(
         self,
@@ -97,10 +102,10 @@ class BuildEnv(gymnasium.Env):
         self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
         self.linger = LINGER.checked(linger)  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
-        self._renderer: Any = None
-        self._eyes: Any = None  # the cameras' renderer, made at the first observation
-        # refuses a structure out of reach, before physics
-        self.episodes = EpisodeMaker(self.config, spec, arms, self.variation, self.randomize)
+        closed = expert_loop(self.limit_commands, action_mode, self.tolerances)
+        self.episodes = EpisodeMaker(  # refuses a structure out of reach, before physics
+            self.config, spec, arms, self.variation, self.randomize, closed
+        )
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
@@ -131,7 +136,7 @@ class BuildEnv(gymnasium.Env):
     def _start_episode(self) -> None:
         loop = self._loop
         loop.feed_spot()  # the first brick on the spot before the first observation
-        self.placing = PlacementWatch(loop)
+        self.placing = PlacementWatch(loop, self.tolerances)
         self.goals = goals(self.plan)  # the targets' poses, build order
         held = loop.data.ctrl[loop.handles.ctrl_index].copy()
         self._command = (held, held)  # the last target, and where the ramp left the command
@@ -187,8 +192,7 @@ class BuildEnv(gymnasium.Env):
         return self._expert.act()
 
     def render(self) -> np.ndarray | None:
-        """`camera_name`'s view at `width` x `height` as an RGB array (render_mode
-        "rgb_array")."""
+        """`camera_name`'s view at `width` x `height`, an RGB array (render_mode "rgb_array")."""
         if self.render_mode != "rgb_array":
             return None
         if self._renderer is None:
@@ -208,8 +212,7 @@ class BuildEnv(gymnasium.Env):
 
     # --- what a step reads and writes --------------------------------------------------------
     def held_command(self) -> np.ndarray:
-        """The command that keeps both arms and hands as they are commanded now (in the hand
-        modes, the action that does)."""
+        """The action that keeps both arms and hands as commanded now, in the mode's form."""
         if self.action_mode in HAND_ACTION_MODES:
             return hand_action(self.action_mode, self.ee.hold(self._loop), self.anchors)
         loop = self._loop

@@ -2,30 +2,24 @@
 driven. It reads the environment's own build (scheduler, primitives, mink IK: the expert is
 privileged, not a learner) and closes the loop on it: with the motion generator on, a move is
 done when the arm's tool is really there (not when the IK says so) and a steady error is
-worked away (physics/tool_feedback.py); when somebody else drove the arms since it was last
+worked away (learning/expert/tool_feedback.py); when somebody else drove the arms since it was last
 asked, it plans from where they are. So it can take over an episode midway, and label
 what to do after a mistake (DART: `record --noise`)."""
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ...choices import HAND_ACTION_MODES
-from ...physics.tool_feedback import JOINT_SMOOTH_TIME, close_loop, take_over
-from ...physics.twist_damping import damp_twist
+from ...physics import names as c
 from .anchored_actions import hand_action
 from .relative_actions import led, relative
 
 if TYPE_CHECKING:
     from ...physics.loop import BuildLoop
     from .env import BuildEnv
-
-# of each tolerance (across and in yaw) a brick let go may lie off before the expert sets
-# it right (the joint modes): one near the tolerance's edge is out at the next small knock
-RE_PLACE_MARGIN = 0.7
 
 # rad: the most a relative action moves an arm joint, with the motion generator on
 # (relative_actions.led says why; docs/learning.md has the measurements, and why joint
@@ -48,12 +42,6 @@ class ExpertPolicy:
     def reset(self) -> None:
         """A new episode (also noticed by itself when the environment was reset)."""
         self._loop = self.env.loop
-        if self.env.limit_commands:  # with the motion generator between it and the servos
-            joints = self.env.action_mode not in HAND_ACTION_MODES  # a policy's jitter on them
-            smooth = JOINT_SMOOTH_TIME if joints else 0.0
-            close_loop(self._loop, smooth, re_place_within(self.env) if joints else None)
-            if joints:  # lagged unequally, a twist swings the hand (physics/twist_damping)
-                damp_twist(self._loop.ik)
         self._done = False
         self._asked = -1
         self._last = None
@@ -103,11 +91,7 @@ class ExpertPolicy:
         return hand_action(env.action_mode, env.ee.expert(loop), env.anchors)
 
 
-def re_place_within(env: BuildEnv) -> tuple[float, float]:
-    """How far (m) and how turned (rad) a brick let go may lie before the expert sets it
-    right: a share of the tolerances the environment judges by."""
-    tolerances = env.placing.tolerances
-    return (
-        tolerances.xy_mm / 1000 * RE_PLACE_MARGIN,
-        math.radians(tolerances.yaw_deg) * RE_PLACE_MARGIN,
-    )
+def take_over(loop: BuildLoop) -> None:
+    """The IK taken to where the arms are, as the expert takes over from whoever drove them:
+    it plans from there."""
+    loop.ik.reset(*(loop.data.qpos[loop.handles.arm_qpos[a]] for a in c.ARMS))

@@ -94,8 +94,8 @@ class WaypointControl:
             if step is not None and step.kind is StepKind.MOVE and path is not None:
                 assert step.pose is not None
                 pose = path.heading(runner.elapsed).with_yaw(step.pose.yaw)
-            if loop.feedback is not None:
-                pose = loop.feedback.aim(arm, pose)
+            if loop.closure is not None:
+                pose = loop.closure.aim(arm, pose)
             action += [pose.x, pose.y, pose.z, pose.yaw, self.hands.label(runner)]
         return np.array(action)
 
