@@ -22,28 +22,29 @@ import sys
 import tempfile
 from pathlib import Path
 
-MODES = {"joint": 25, "relative": 25, "ee": 10, "waypoint": 10, "anchored": 10}
+# each mode at its frame rate: the hand modes' 10 fps, the joint modes' 25
+MODES = (("joint", 25), ("relative", 25), ("ee", 10), ("waypoint", 10), ("anchored", 10))
 ROBOTS = ("panda", "baxter", "so101")
 RAW_ROBOT = "panda"  # each mode once more with no motion generator (`limit_commands=False`)
 SEEDS = (100_000, 100_001)
 RECORD = ("record --structure pyramid-even --layers 1 --episodes 2 --variation layout "
           "--cameras none --linger 2 --quiet")  # fmt: skip
-RECORD_MODES = {"anchored": "--fps 10 --noise 0.005", "relative": "--fps 25 --noise 0.005"}
+RECORD_MODES = (("anchored", "--fps 10 --noise 0.005"), ("relative", "--fps 25 --noise 0.005"))
 BUILD = "build --structure pyramid-even --quiet --layers"
 BUILD_LAYERS = (2, 4)  # 4: the README's
 WALL = ("wall_time", "real_time")  # keys of wall-clock figures, not the physics'
 
 
-def env_hash(mode: str, robot: str, limit: bool = True) -> tuple[str, str]:
-    """The expert's rollouts in `mode` on `robot` (`limit`: with the motion generator): their
-    sha256 and how each ended."""
+def env_hash(mode: str, fps: int, robot: str, limit: bool = True) -> tuple[str, str]:
+    """The expert's rollouts in `mode` at `fps` on `robot` (`limit`: with the motion
+    generator): their sha256 and how each ended."""
     import numpy as np
 
     from pyramid_sim.learning.env.env import BuildEnv
     from pyramid_sim.learning.recording.episode import step_limit
 
     env = BuildEnv(
-        "pyramid-even", layers=1, robot=robot, variation="layout", fps=MODES[mode],
+        "pyramid-even", layers=1, robot=robot, variation="layout", fps=fps,
         action_mode=mode, limit_commands=limit,
     )  # fmt: skip
     digest, ends = hashlib.sha256(), []
@@ -92,9 +93,9 @@ def _figures(value: object) -> object:
     return value
 
 
-def record_hash(mode: str) -> str:
+def record_hash(mode: str, options: str) -> str:
     """The recording's files in `mode`, made twice: the same bytes (else no fingerprint)."""
-    args = f"{RECORD} --action-mode {mode} {RECORD_MODES[mode]}"
+    args = f"{RECORD} --action-mode {mode} {options}"
     with tempfile.TemporaryDirectory() as tmp:
         hashes = []
         for k in range(2):
@@ -127,18 +128,18 @@ def main() -> int:
     args = parser.parse_args()
     found: dict[str, dict[str, str]] = {}
     if args.part in ("env", "all"):
-        for mode in MODES:
+        for mode, fps in MODES:
             for robot in ROBOTS:
-                digest, ends = env_hash(mode, robot)
+                digest, ends = env_hash(mode, fps, robot)
                 found[f"env {mode} {robot}"] = {"sha256": digest, "ends": ends}
                 print(f"env {mode:<8} {robot:<10} {digest[:16]}  {ends}", flush=True)
-        for mode in MODES:
-            digest, ends = env_hash(mode, RAW_ROBOT, limit=False)
+        for mode, fps in MODES:
+            digest, ends = env_hash(mode, fps, RAW_ROBOT, limit=False)
             found[f"env {mode} {RAW_ROBOT} raw"] = {"sha256": digest, "ends": ends}
             print(f"env {mode:<8} {RAW_ROBOT + ' raw':<10} {digest[:16]}  {ends}", flush=True)
     if args.part in ("record", "all"):
-        for mode in RECORD_MODES:
-            digest = record_hash(mode)
+        for mode, options in RECORD_MODES:
+            digest = record_hash(mode, options)
             found[f"record {mode}"] = {"sha256": digest, "ends": ""}
             print(f"record {mode:<19} {digest[:16]}", flush=True)
     if args.part in ("build", "all"):

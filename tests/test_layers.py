@@ -30,6 +30,7 @@ LEARNING_LAYERS = (
     ("recording",),  # the expert's episodes as a dataset
     ("env", "dataset"),  # the Gymnasium environment; LeRobot's layout
     ("expert",),  # the scripted builder as a policy, and its closed loop
+    ("action_modes",),  # what an action is and how it moves the arms, a class a mode
     ("task",),  # what an episode is and what a policy sees
 )
 ENTRY_POINTS = ("cli", "perf")  # alone may import the package's namespace, as a user would

@@ -58,10 +58,11 @@ def test_without_the_joint_modes_filtering_white_noise_sets_a_brick_off(monkeypa
     """The generator's jerk and the expert's reading as the hand modes have them (and no
     re-place, no twist damping): a brick lands more than the 5 mm tolerance off, and the
     episode reaches its step limit."""
-    from pyramid_sim.learning.env import action_modes
+    from pyramid_sim.learning.action_modes import joint
     from pyramid_sim.learning.expert import closure
+    from pyramid_sim.physics.motion_generator import JERK_TIME
 
-    monkeypatch.setattr(action_modes, "JOINT_JERK_TIME", action_modes.JERK_TIME)
+    monkeypatch.setattr(joint, "JOINT_JERK_TIME", JERK_TIME)
     monkeypatch.setattr(closure, "JOINT_SMOOTH_TIME", 0.0)
     monkeypatch.setattr(closure, "re_place_within", lambda tolerances: None)
     monkeypatch.setattr(closure, "damp_twist", lambda ik: None)

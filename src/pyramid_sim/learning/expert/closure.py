@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable
 from functools import partial
 
-from ...choices import HAND_ACTION_MODES, Arm
+from ...choices import Arm
 from ...core.poses import Pose
 from ...core.primitives import Step
 from ...core.scheduler import Task
@@ -59,11 +59,11 @@ def expert_closure(parts: BuildParts, joints: bool, tolerances: Tolerances) -> E
 
 
 def expert_loop(
-    closed: bool, action_mode: str, tolerances: Tolerances
+    closed: bool, joints: bool, tolerances: Tolerances
 ) -> Callable[[BuildParts], ExpertClosure] | None:
     """What closes each episode's build loop: the expert's where the motion generator stands
-    between it and the servos (`closed`), nothing where the commands go to them raw."""
-    joints = action_mode not in HAND_ACTION_MODES  # a policy's jitter reaches these
+    between it and the servos (`closed`), nothing where the commands go to them raw;
+    `joints`: for a joint mode (`expert_closure`)."""
     return partial(expert_closure, joints=joints, tolerances=tolerances) if closed else None
 
 

@@ -6,14 +6,10 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from functools import partial
 from typing import Any
 
 import numpy as np
 
-from ...choices import WAYPOINT_MODES
-from ..env.action_modes import moved_entries
-from ..env.anchored_actions import hand_action, waypoint_action
 from ..env.env import BuildEnv
 from ..task.spaces import environment_state
 from .lead_labels import LeadLabels
@@ -97,7 +93,7 @@ class JointNoise:
 
     def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
         self.scale = scale
-        self.joints = moved_entries(env)
+        self.joints = env.mode.moved
         self.period = max(1, round(NOISE_PERIOD * env.fps))
         self.random = np.random.default_rng([seed, 0xDA27])
         self.offset = np.zeros(len(self.joints))
@@ -134,7 +130,7 @@ def expert_episode(
     frames = 0
     while True:
         action = env.expert_action()
-        anchors = env.anchors  # an anchored action's frames at this step
+        waypoints = env.mode.waypoints(action)  # in the frames of this step, if any
         primitive, brick = _doing(env)  # what the expert's action is for
         state = obs["state"].astype(np.float32)
         environment = environment_state(obs)
@@ -154,10 +150,9 @@ def expert_episode(
                 primitive,
                 brick,
             )  # fmt: skip
-        if env.action_mode in WAYPOINT_MODES:  # led as waypoints, given back in the mode's form
-            waypoint = waypoint_action(env.action_mode, action, anchors)
-            led(replace(frame, action=waypoint.astype(np.float32)), hands,
-                partial(hand_action, env.action_mode, anchors=anchors))  # fmt: skip
+        if waypoints is not None:  # led as waypoints, given back in the mode's form
+            waypoint, form = waypoints
+            led(replace(frame, action=waypoint.astype(np.float32)), hands, form)
         else:
             on_frame(frame)
         frames += 1
