@@ -12,6 +12,7 @@ import numpy as np
 
 from ..env.env import BuildEnv
 from ..task.spaces import environment_state
+from .frame import Frame
 from .lead_labels import LeadLabels
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
@@ -35,22 +36,6 @@ def task_text(env: BuildEnv) -> str:
     """The task a recording's frames and an evaluation's policy are given, in words."""
     spec, robot = env.plan.spec, env.config.robot_description.name
     return TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
-
-
-@dataclass(frozen=True)
-class Frame:
-    """What a dataset keeps of one frame (one environment step): the observation before the
-    action, the action, and the reward, end and success that followed it."""
-
-    state: np.ndarray  # float32, the layout's order
-    environment: np.ndarray  # float32: every magazine brick's pose, then every target's
-    action: np.ndarray  # float32
-    images: dict[str, np.ndarray]  # camera -> H x W x 3 uint8
-    reward: float
-    done: bool
-    success: bool
-    primitive: tuple[int, int]  # per arm, left first: an index into PRIMITIVES
-    brick: tuple[int, int]  # per arm: the brick (build order) its task handles, -1 for none
 
 
 @dataclass(frozen=True)
