@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from pyramid_sim.choices import ACTION_MODES, RECORD_ACTION_MODES, ROBOT_NAMES
+from pyramid_sim.choices import ACTION_MODE_WORDS, ACTION_MODES, RECORD_ACTION_MODES, ROBOT_NAMES
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.learning.action_modes.registry import MODES, action_size, mode_class
 from pyramid_sim.robots import robot
@@ -19,6 +19,7 @@ CHECKED = ("src", "benchmarks", "plugins", "scripts")
 
 def test_every_mode_name_has_its_class():
     assert tuple(MODES) == ACTION_MODES  # the CLI's choices (choices.py imports no MuJoCo)
+    assert set(ACTION_MODE_WORDS) == set(MODES)  # and their help
     assert set(RECORD_ACTION_MODES) <= set(MODES)
     with pytest.raises(ConfigError, match="accepted joint, relative, ee, waypoint or anchored"):
         mode_class("delta")

@@ -189,10 +189,8 @@ class EndEffectorMode:
 
     def expert(self, move: ExpertMove) -> np.ndarray:
         """The builder's move while it moves; once it has stopped, stay where aimed."""
-        control = self.control
-        return (control.expert(move.loop) if move.moving else control.hold(move.loop)).astype(
-            np.float32
-        )
+        action = self.control.expert if move.moving else self.control.hold
+        return action(move.loop).astype(np.float32)
 
     def waypoints(self, action: np.ndarray) -> Waypoints | None:
         return None
