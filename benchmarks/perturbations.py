@@ -26,10 +26,9 @@ ROWS = [("none", 0.0), ("noise", 0.002), ("noise", 0.005), ("hold", 5), ("hold",
 
 
 def run_row(env, perturbation, seeds: range, limit: int) -> dict:
-    from pyramid_sim.learning.env.action_modes import moved_entries
     from pyramid_sim.learning.evaluation.perturbations import Perturber
 
-    joints = moved_entries(env)
+    joints = env.mode.moved  # the entries that move an arm, the mode says
     wins, failures, start = 0, {}, time.perf_counter()
     for seed in seeds:
         env.reset(seed=seed)
@@ -76,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     print(f"{'perturbation':<20} {'built':>7}  failures")
     for kind, amount in ROWS:
-        metres = args.action_mode in ("waypoint", "anchored")
+        metres = env.mode.moved_unit == "m"  # hand positions, not joints
         row = run_row(env, Perturbation(kind, amount, metres), seeds, limit)
         rows.append(row)
         print(f"{row['perturbation']:<20} {row['successes']:>3}/{row['episodes']:<3}  "

@@ -3,9 +3,8 @@
 
     python3 scripts/design_map.py [--check]
 
-One line a module under src/pyramid_sim: its path and the first line of its docstring (with
-" ..." where the first sentence goes on), grouped by sub-package, each group headed by its
-`__init__.py`'s first line. The map goes between the marker comments in docs/design.md;
+One entry a module under src/pyramid_sim: its path and the first sentence of its docstring,
+whole, grouped by sub-package, each group headed by its `__init__.py`'s first sentence. The map goes between the marker comments in docs/design.md;
 `--check` changes nothing and exits 1 if the map there is not the one the code makes (as
 tests/test_design_map.py does). Read with `ast` only: nothing of pyramid_sim is imported.
 """
@@ -26,24 +25,18 @@ START = "<!-- map:start: made by scripts/design_map.py from the docstrings; edit
 END = "<!-- map:end -->"
 WIDTH = 100
 NO_DOCSTRING = "(no docstring)"
-ELLIPSIS = "\u00a0..."  # held to the word before it when lines are wrapped, a space after
 
 
 def summary(path: Path) -> str | None:
-    """The first line of the module's docstring: up to the end of its first sentence where
-    that ends within the line, else all of it with " ..." where the sentence goes on. None
-    for a module without a docstring."""
+    """The first sentence of the module's docstring, whole (its first paragraph's lines joined
+    up to the first full stop, question or exclamation mark that ends a sentence). None for
+    a module without a docstring."""
     doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8")))
     if not doc or not doc.strip():
         return None
-    lines = doc.strip().splitlines()
-    first = lines[0].strip()
-    ended = re.search(r"[.?!](?= )", first)
-    if ended:
-        return first[: ended.end()]
-    if len(lines) > 1 and lines[1].strip() and not first.endswith((".", "?", "!")):
-        return first + ELLIPSIS
-    return first
+    paragraph = " ".join(line.strip() for line in doc.strip().split("\n\n")[0].splitlines())
+    ended = re.search(r"[.?!](?=\s|$)", paragraph)
+    return paragraph[: ended.end()] if ended else paragraph
 
 
 def modules(src: Path = SRC) -> dict[str, list[Path]]:
@@ -68,16 +61,17 @@ def undocumented(src: Path = SRC) -> list[str]:
 
 
 def _fill(text: str, indent: str = "") -> str:
-    wrapped = textwrap.fill(
+    return textwrap.fill(
         text, WIDTH, subsequent_indent=indent, break_long_words=False, break_on_hyphens=False
     )
-    return wrapped.replace(ELLIPSIS, " ...")
 
 
 def render(src: Path = SRC) -> str:
-    """The map, as Markdown: a paragraph naming each sub-package and a list of its modules."""
+    """The map, as Markdown: a paragraph naming each sub-package and a list of its modules (a
+    package of rooms alone, of its rooms)."""
     blocks = []
-    for package, paths in modules(src).items():
+    grouped = modules(src)
+    for package, paths in grouped.items():
         init = src / package / "__init__.py"
         if package:
             heading = f"`{package}/`: {summary(init) or NO_DOCSTRING}"
@@ -88,6 +82,10 @@ def render(src: Path = SRC) -> str:
             for p in paths
             if package == "" or p != init
         ]
+        if not items:  # rooms only: name them, each described under its own heading
+            rooms = [f"`{p}/`" for p in grouped if p.startswith(f"{package}/") and p.count("/")
+                     == package.count("/") + 1]  # fmt: skip
+            items = [_fill(f"- its rooms: {', '.join(rooms)}", "  ")]
         blocks.append(_fill(heading) + "\n\n" + "\n".join(items))
     return "\n\n".join(blocks) + "\n"
 

@@ -28,7 +28,7 @@ def test_every_module_has_a_docstring_for_the_map():
     assert dm.undocumented() == []
 
 
-def test_the_map_names_every_module_by_its_first_line_grouped_by_package(tmp_path):
+def test_the_map_names_every_module_by_its_first_sentence_grouped_by_package(tmp_path):
     src = tmp_path / "pkg"
     (src / "sub").mkdir(parents=True)
     (src / "__init__.py").write_text('"""The package."""\n')
@@ -37,12 +37,20 @@ def test_the_map_names_every_module_by_its_first_line_grouped_by_package(tmp_pat
     (src / "c.py").write_text("x = 1\n")
     (src / "sub" / "__init__.py").write_text('"""What sub holds."""\n')
     (src / "sub" / "d.py").write_text('"""D, alone."""\n')
+    (src / "rooms" / "inner").mkdir(parents=True)
+    (src / "rooms" / "__init__.py").write_text('"""Rooms alone."""\n')
+    (src / "rooms" / "inner" / "__init__.py").write_text('"""Inner."""\n')
+    (src / "rooms" / "inner" / "e.py").write_text('"""E."""\n')
     assert dm.render(src) == (
         "The top level, `src/pyramid_sim/`:\n\n"
         "- `__init__.py`: The package.\n"
         "- `a.py`: Ends here.\n"
-        "- `b.py`: A sentence that goes ...\n"
+        "- `b.py`: A sentence that goes on to the next line.\n"
         "- `c.py`: (no docstring)\n\n"
+        "`rooms/`: Rooms alone.\n\n"
+        "- its rooms: `rooms/inner/`\n\n"
+        "`rooms/inner/`: Inner.\n\n"
+        "- `rooms/inner/e.py`: E.\n\n"
         "`sub/`: What sub holds.\n\n"
         "- `sub/d.py`: D, alone.\n"
     )
@@ -54,11 +62,11 @@ def test_the_map_names_every_module_by_its_first_line_grouped_by_package(tmp_pat
     assert dm.updated(fresh, src) == fresh  # made afresh twice, the same page
 
 
-def test_a_long_line_wraps_with_its_ellipsis_held_to_the_word_before(tmp_path):
+def test_a_sentence_over_several_lines_is_given_whole_and_wrapped(tmp_path):
     src = tmp_path / "pkg"
     src.mkdir()
-    words = "word " * 16 + "wordyyy"  # "- `long.py`: " and these fill the line to its 100th column
-    (src / "long.py").write_text(f'"""{words}\nand on."""\n')
+    words = "word " * 30 + "end."
+    (src / "long.py").write_text(f'"""{words[:60]}\n{words[60:]} Not this.\n\nNor this."""\n')
     item = dm.render(src).splitlines()[2:]
-    assert len(f"- `long.py`: {words}") == dm.WIDTH
-    assert item == [f"- `long.py`: {'word ' * 15}word", "  wordyyy ..."]  # not "  ..." alone
+    assert " ".join(line.strip() for line in item) == f"- `long.py`: {words}"
+    assert all(len(line) <= dm.WIDTH for line in item) and len(item) == 2

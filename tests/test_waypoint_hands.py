@@ -7,7 +7,7 @@ import pytest
 
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.primitives import Step, StepKind
-from pyramid_sim.learning.env.gripper_switch import GripperSwitch
+from pyramid_sim.learning.action_modes.gripper_switch import GripperSwitch
 
 DT = 0.002
 

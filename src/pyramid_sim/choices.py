@@ -22,14 +22,23 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 # How much one learning episode differs from the next (learning/task/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
-# What an environment's action is (learning/task/contract.py): joint targets, each joint's change
-# from where it is (relative), each hand's pose change (ee), or the pose each hand goes to
-# (waypoint), or that pose from the pick location, the arm's clear pose or its next target
-# (anchored); a recording writes all but ee. The last three are hand poses, turned into joints by the IK.
+# What an environment's action is (learning/action_modes/registry.py has a class for each name):
+# joint targets, each joint's change from where it is (relative), each hand's pose change (ee),
+# or the pose each hand goes to (waypoint), or that pose from the pick location, the arm's clear
+# pose or its next target (anchored); a recording writes all but ee. The last three are hand
+# poses, turned into joints by the IK.
 ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored")
+# Each in a few words, for the command line's help.
+ACTION_MODE_WORDS = {
+    "joint": "joint targets",
+    "relative": "relative (each joint's change from where it is: what a learner predicts most "
+    "precisely)",
+    "ee": "ee (each hand's pose change)",
+    "waypoint": "waypoint (the pose each hand goes to)",
+    "anchored": "anchored (that pose from the pick location, the arm's clear pose or its next "
+    "target)",
+}
 RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored")
-HAND_ACTION_MODES = ("ee", "waypoint", "anchored")
-WAYPOINT_MODES = ("waypoint", "anchored")  # a waypoint's controller, hands and led labels
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin
@@ -56,9 +65,8 @@ def in_words(options: Iterable[object]) -> str:
 __all__ = [
     "in_words",
     "ACTION_MODES",
+    "ACTION_MODE_WORDS",
     "RECORD_ACTION_MODES",
-    "HAND_ACTION_MODES",
-    "WAYPOINT_MODES",
     "FPS_CHOICES",
     "ENV_ID",
     "LEROBOT_ENV_ID",

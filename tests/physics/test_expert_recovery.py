@@ -58,12 +58,14 @@ def test_without_the_joint_modes_filtering_white_noise_sets_a_brick_off(monkeypa
     """The generator's jerk and the expert's reading as the hand modes have them (and no
     re-place, no twist damping): a brick lands more than the 5 mm tolerance off, and the
     episode reaches its step limit."""
-    from pyramid_sim.learning.env import action_modes, expert
+    from pyramid_sim.learning.action_modes import joint
+    from pyramid_sim.learning.expert import closure
+    from pyramid_sim.physics.motion_generator import JERK_TIME
 
-    monkeypatch.setattr(action_modes, "JOINT_JERK_TIME", action_modes.JERK_TIME)
-    monkeypatch.setattr(expert, "JOINT_SMOOTH_TIME", 0.0)
-    monkeypatch.setattr(expert, "re_place_within", lambda env: None)
-    monkeypatch.setattr(expert, "damp_twist", lambda ik: None)
+    monkeypatch.setattr(joint, "JOINT_JERK_TIME", JERK_TIME)
+    monkeypatch.setattr(closure, "JOINT_SMOOTH_TIME", 0.0)
+    monkeypatch.setattr(closure, "re_place_within", lambda tolerances: None)
+    monkeypatch.setattr(closure, "damp_twist", lambda ik: None)
     env = gymnasium.make(ENV, **TASK).unwrapped
     info = _noisy_episode(env, 100_004)
     assert not info["is_success"] and info["bricks_placed"] == 1
@@ -262,7 +264,7 @@ def test_a_steady_offset_is_worked_away_where_the_brick_is_set_down():
     shifted = 0.0
     while True:
         _, _, terminated, truncated, info = env.step(offset(env.expert_action()))
-        bias = env.loop.feedback.bias
+        bias = env.loop.closure.feedback.bias
         shifted = max(shifted, *(float(np.abs(b).max()) for b in bias.values()))
         if terminated or truncated:
             break
@@ -285,7 +287,7 @@ def test_a_brick_is_let_go_only_from_a_hand_at_rest_and_within_patience():
     ):
         env.step(env.expert_action())
     arm = next(a for a in ("left", "right") if loop.step_of(a).name == "release")
-    feedback, error = loop.feedback, loop.arrival[arm]
+    feedback, error = loop.closure.feedback, loop.arrival[arm]
     feedback._speed[arm] = 0.0
     at_rest = error()
     assert at_rest < 0.01  # the brick's own error, millimetres

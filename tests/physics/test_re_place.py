@@ -45,7 +45,7 @@ def test_a_brick_knocked_off_its_place_is_set_right_and_counted_once():
     env = gymnasium.make(pyramid_sim.ENV_ID, **TASK).unwrapped
     info = _knocked_after_release(env, 100_000, 0.008)
     assert info["is_success"], info["failure"]
-    assert sum(env.loop.re_placer.tries.values()) == 1  # the knocked brick, once
+    assert sum(env.loop.closure.re_placer.tries.values()) == 1  # the knocked brick, once
     assert max(_errors_mm(env)) < 3.5  # within the margin it is set right to
     assert env.loop.placed == 2  # two bricks, however often let go
     env.close()
@@ -55,7 +55,7 @@ def test_a_brick_within_the_margin_is_left_where_it_lies():
     env = gymnasium.make(pyramid_sim.ENV_ID, **TASK).unwrapped
     info = _knocked_after_release(env, 100_000, 0.0015)  # 2.1 mm across, under 3.5
     assert info["is_success"], info["failure"]
-    assert env.loop.re_placer.tries == {}
+    assert env.loop.closure.re_placer.tries == {}
     env.close()
 
 
@@ -65,7 +65,7 @@ def test_the_hand_modes_expert_does_not_re_place():
     env = gymnasium.make(pyramid_sim.ENV_ID, action_mode="anchored", **TASK).unwrapped
     info = _knocked_after_release(env, 100_000, 0.008)
     assert not info["is_success"]
-    assert env.loop.re_placer is None
+    assert env.loop.closure.re_placer is None
     assert max(_errors_mm(env)) > 5.0
     env.close()
 
@@ -87,15 +87,15 @@ def test_a_5_mrad_offset_redrawn_every_second_still_builds():
     env = gymnasium.make(pyramid_sim.ENV_ID, **TASK).unwrapped
     info = _offset_episode(env, 100_004)
     assert info["is_success"], info["failure"]
-    assert env.loop.re_placer.tries == {1: 1}
+    assert env.loop.closure.re_placer.tries == {1: 1}
     assert np.max(_errors_mm(env)) < 5.0
     env.close()
 
 
 def test_without_the_re_place_the_offset_leaves_a_brick_off_to_the_step_limit(monkeypatch):
-    from pyramid_sim.learning.env import expert
+    from pyramid_sim.learning.expert import closure
 
-    monkeypatch.setattr(expert, "re_place_within", lambda env: None)
+    monkeypatch.setattr(closure, "re_place_within", lambda tolerances: None)
     env = gymnasium.make(pyramid_sim.ENV_ID, **TASK).unwrapped
     info = _offset_episode(env, 100_004)
     assert not info["is_success"] and info["failure"] is None  # ran to its step limit

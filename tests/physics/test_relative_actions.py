@@ -11,8 +11,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
-from pyramid_sim.learning.env.expert import LEAD
-from pyramid_sim.learning.env.relative_actions import led
+from pyramid_sim.learning.action_modes.relative import LEAD, led
 
 pytestmark = pytest.mark.physics
 TASK = {"structure": "pyramid-even", "layers": 1}

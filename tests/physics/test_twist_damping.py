@@ -7,14 +7,14 @@ import dataclasses
 import numpy as np
 import pytest
 
-import pyramid_sim.learning.env.expert as expert
+import pyramid_sim.learning.expert.closure as closure
 from pyramid_sim.config import SimConfig
 from pyramid_sim.learning.env.env import BuildEnv
+from pyramid_sim.learning.expert.twist_damping import TWIST_DAMPING, damp_twist
 from pyramid_sim.learning.recording.episode import step_limit
 from pyramid_sim.physics import names as c
 from pyramid_sim.physics.handles import dof_addresses
 from pyramid_sim.physics.ik import DualArmIK
-from pyramid_sim.physics.twist_damping import TWIST_DAMPING, damp_twist
 from pyramid_sim.robots import robot
 
 
@@ -60,7 +60,7 @@ def test_the_expert_builds_where_the_twist_swung_the_hand():
 
 
 def test_without_the_damping_the_hand_strikes_the_brick(monkeypatch):
-    monkeypatch.setattr(expert, "damp_twist", lambda ik: None)
+    monkeypatch.setattr(closure, "damp_twist", lambda ik: None)
     info = _six_bricks(100_038)
     assert not info["is_success"]
     assert "torque limit" in info["failure"]

@@ -10,7 +10,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import pyramid_sim
-from pyramid_sim.learning.env import waypoint_control
+from pyramid_sim.learning.action_modes import waypoint
 from pyramid_sim.learning.recording.episode import JointNoise
 
 ENV = pyramid_sim.ENV_ID
@@ -38,7 +38,7 @@ def test_the_experts_waypoints_build_and_the_checker_passes():
         if terminated or truncated:
             break
     assert terminated and info["is_success"] and rewards == 2, info["failure"]
-    assert gaps == {0.0, np.float32(env.ee.hands.open)}  # open or closed, never between
+    assert gaps == {0.0, np.float32(env.mode.control.hands.open)}  # open or closed, never between
     env.close()
 
 
@@ -55,7 +55,7 @@ def test_a_waypoint_is_where_the_move_ends_not_the_next_step_of_it():
         if step is not None and step.name == "approach" and runner.started:
             labels.append(action[:3].copy())
             tools.append(env.loop.data.site_xpos[env.loop.handles.tcp_site["left"]].copy())
-            aimed = env.loop.feedback.aim("left", step.pose)
+            aimed = env.loop.closure.aim("left", step.pose)
             np.testing.assert_allclose(action[:3], aimed.position, atol=1e-6)
         env.step(action)
     assert len(labels) >= 3
@@ -70,7 +70,7 @@ def test_a_far_waypoint_moves_the_target_no_faster_than_the_hand_moves():
     free speed times the control step; the arm follows within its limits."""
     env = _env()
     env.reset(seed=0)
-    hand = env.ee
+    hand = env.mode.control
     start = hand.ee.targets["left"]
     action = hand.hold(env.loop).astype(np.float32)
     action[1] -= 0.3  # left hand 30 cm towards the middle
@@ -112,18 +112,18 @@ def test_without_the_lag_a_waypoint_is_met_at_full_speed(monkeypatch):
     env.reset(seed=0)
 
     def last_step() -> float:
-        action = env.ee.hold(env.loop).astype(np.float32)
+        action = env.mode.control.hold(env.loop).astype(np.float32)
         action[2] += 0.005  # 5 mm up
-        before = env.ee.ee.targets["left"].z
-        env.ee.command(env.loop, action)
-        return env.ee.ee.targets["left"].z - before
+        before = env.mode.control.ee.targets["left"].z
+        env.mode.control.command(env.loop, action)
+        return env.mode.control.ee.targets["left"].z - before
 
-    lagged, lag = last_step(), waypoint_control.LAG
-    monkeypatch.setattr(waypoint_control, "LAG", 1e-9)
+    lagged, lag = last_step(), waypoint.LAG
+    monkeypatch.setattr(waypoint, "LAG", 1e-9)
     env.reset(seed=0)
     unlagged = last_step()
-    assert unlagged == pytest.approx(env.ee.slow_speed * env.ee.dt, rel=1e-4)
-    assert lagged == pytest.approx(0.005 / lag * env.ee.dt, rel=1e-4)
+    assert unlagged == pytest.approx(env.mode.control.slow_speed * env.mode.control.dt, rel=1e-4)
+    assert lagged == pytest.approx(0.005 / lag * env.mode.control.dt, rel=1e-4)
     assert lagged < unlagged
     env.close()
 
@@ -161,9 +161,9 @@ def test_a_gap_left_between_open_and_closed_closes_the_hand_to_the_servos():
     force limit then squeezes): read from the compiled model's controls and finger joints."""
     env = _env()
     obs, _ = env.reset(seed=0)
-    hands, gaps = env.ee.hands, env.ee.ee.gaps
+    hands, gaps = env.mode.control.hands, env.mode.control.ee.gaps
     opened = obs["state"][gaps]
-    action = env.ee.hold(env.loop)
+    action = env.mode.control.hold(env.loop)
     action[4] = hands.threshold - 0.002  # the left hand: closed; the right stays open
     for _ in range(env.fps):  # a second: the motion generator limits the fingers' speed too
         obs, *_ = env.step(action.astype(np.float32))

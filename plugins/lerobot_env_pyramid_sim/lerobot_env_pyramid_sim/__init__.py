@@ -17,7 +17,6 @@ from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 import pyramid_sim
 from pyramid_sim.choices import (
-    ARMS,
     DEFAULT_VARIATION,
     RECORD_CAMERAS,
     RECORD_FPS,
@@ -51,6 +50,8 @@ class PyramidSimEnv(EnvConfig):
     features_map: dict[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        from pyramid_sim.learning.action_modes.registry import action_size
+
         bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
         if self.episode_length is None:  # MuJoCo's import: only when this env is asked for
             from pyramid_sim.learning.recording.episode import step_limit
@@ -58,9 +59,7 @@ class PyramidSimEnv(EnvConfig):
             self.episode_length = step_limit(bricks, self.fps)
         # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
         motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
-        # a waypoint is each hand's x, y, z, yaw and gap; an anchored one its anchor too
-        hand = {"waypoint": 5, "anchored": 6}.get(self.action_mode)
-        actions = hand * len(ARMS) if hand else motors
+        actions = action_size(self.action_mode, robot(self.robot))  # the mode's own count
         self.features = {
             ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(actions,)),
             "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),

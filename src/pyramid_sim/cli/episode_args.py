@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..choices import FPS_CHOICES
+from ..choices import ACTION_MODE_WORDS, FPS_CHOICES
 from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
@@ -45,11 +45,7 @@ def add_episode_args(
         "--action-mode",
         default="joint",
         choices=modes,
-        help="the action: joint targets, relative (each joint's change from where it is: "
-        "what a learner predicts most precisely)"
-        + (", ee (each hand's pose change)" if "ee" in modes else "")
-        + ", waypoint (the pose each hand goes to), anchored (that pose from the pick location, "
-        "the arm's clear pose or its next target) (default joint)",
+        help=f"the action: {', '.join(ACTION_MODE_WORDS[m] for m in modes)} (default joint)",
     )
 
 

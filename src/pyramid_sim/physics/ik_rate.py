@@ -27,12 +27,18 @@ class IKRate:
     """Solves the IK for the arms' commanded poses at a build's control steps, at the rate
     free motion allows; `solves` counts the solves."""
 
-    def __init__(self, ik: DualArmIK, dispatch: ArmDispatch, config: SimConfig) -> None:
+    def __init__(
+        self,
+        ik: DualArmIK,
+        dispatch: ArmDispatch,
+        config: SimConfig,
+        aim: Callable[[Arm, Pose], Pose] | None = None,
+    ) -> None:
         self.ik, self.dispatch = ik, dispatch
         self.interval = config.motion.free_ik_interval
         self.dt = config.motion.control_dt
         self.solves = 0
-        self.aim: Callable[[Arm, Pose], Pose] | None = None  # a shift of where the IK aims
+        self.aim = aim  # a shift of where the IK aims (a closed loop's)
         self._planned_for: tuple[tuple[Step | None, bool], ...] = ()
 
     def step(self) -> bool:

@@ -4,7 +4,6 @@ step (IK at `control_dt`) drives `substeps` physics steps."""
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 
 import mink
 import mujoco
@@ -17,20 +16,20 @@ from ..core.plan import Plan
 from ..core.primitives import Step, StepKind
 from ..core.scheduler import Action, Task
 from . import names as c
+from .closure import LoopClosure
 from .hooks import BuildHooks
 from .ik_rate import IKRate
 from .parts import BuildParts, make_parts
-from .re_place import RePlacer
 from .readout import measurements
 from .sag import SagOffset
 from .stops import no_motion_reason, stall_reason, warning_reason
-from .tool_feedback import ToolFeedback
 
 
 class BuildLoop:
-    """One build of a plan, from parts made for it; `run()` builds it once."""
+    """One build of a plan, from parts made for it, its loop open or closed by `closure`
+    (physics/closure.py); `run()` builds it once."""
 
-    def __init__(self, parts: BuildParts) -> None:
+    def __init__(self, parts: BuildParts, closure: LoopClosure | None = None) -> None:
         self.parts = p = parts
         self.plan, self.config = p.plan, p.config
         self.model, self.data, self.handles = p.model, p.data, p.handles
@@ -48,11 +47,12 @@ class BuildLoop:
         self.placed = self.steps = 0
         robot, ik = config.robot_description, self.ik
         self._sag = None if robot.gravity_compensation else SagOffset(ik.model, robot)
-        self.ik_rate = IKRate(self.ik, self.dispatch, config)
-        # how far each arm is from its move's end: the IK's error, or measured (tool_feedback)
-        self.arrival: dict[Arm, Callable[[], float]] = {a: ik.error_of(a) for a in c.ARMS}
-        self.feedback: ToolFeedback | None = None  # the expert's loop, once closed
-        self.re_placer: RePlacer | None = None  # and its bricks set right, where asked
+        self.closure = closure
+        self.ik_rate = IKRate(ik, self.dispatch, config, closure.aim if closure else None)
+        # how far each arm is from its move's end: the IK's error, or the closure's measure
+        self.arrival = {a: closure.arrival(a) if closure else ik.error_of(a) for a in c.ARMS}
+        for runner in self.dispatch.runners.values():  # a closed loop's releases: at once
+            runner.let_go_at_once = bool(closure and closure.let_go_at_once)
         self.last_progress = 0.0  # sim time an arm last finished a step
         self._next_frame = 0.0
 
@@ -86,8 +86,8 @@ class BuildLoop:
         self.last_progress = self.data.time
         kind = step.kind
         picking = task is not None and task.action in (Action.PICK, Action.BUILD)
-        if self.re_placer is not None:
-            self.re_placer.step_done(arm, step, task)
+        if self.closure is not None:
+            self.closure.step_done(arm, step, task)
         first = task is not None and task.brick not in self.custody.slot_of  # not a re-place
         if kind is StepKind.MOVE and step.name == "servo" and picking and first:
             if self.spawner.current is not None:  # the fingers are around it: handled now
@@ -175,8 +175,8 @@ class BuildLoop:
         self.zones.update(self.dispatch.scheduler)
         if self.dispatch.schedule(self.data.time):
             return False
-        if self.feedback is not None:
-            self.feedback.update()
+        if self.closure is not None:
+            self.closure.update()
         self._drive_arms()
         return True
 

@@ -1,14 +1,5 @@
-"""The build as a Gymnasium environment (`env.BuildEnv`), the action modes that turn a
-policy's action into joint commands (joint, relative, ee, waypoint and their hands), and the
-scripted builder as a policy (`expert`)."""
+"""The build as a Gymnasium environment (`env.BuildEnv`): an episode's own count and end
+(`episode_state`), and one environment step's control steps (`control_steps`), the action
+mode (learning/action_modes/) turning the action into joint commands."""
 
-__all__ = [
-    "action_modes",
-    "ee_control",
-    "env",
-    "expert",
-    "gripper_switch",
-    "relative_actions",
-    "target_spline",
-    "waypoint_control",
-]
+__all__ = ["control_steps", "env", "episode_state", "expert"]

@@ -1,68 +1,62 @@
-"""One environment step's control steps: the command toward the action's target at each, the
-placements and failures they bring, the episode's end where its success or failure comes."""
+"""One environment step's control steps: the action mode's command toward the step's target
+at each, through the motion generator where it is on, the placements and failures they
+bring. Made for each episode from its parts: the loop, the mode, the generator, the
+placement watch and the episode's state."""
 
 from __future__ import annotations
-
-from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 import mink
 import numpy as np
 
-from ...choices import HAND_ACTION_MODES
+from ...physics.loop import BuildLoop
+from ...physics.motion_generator import MotionGenerator
 from ...physics.stops import no_motion_reason
-from ..task.outcome import episode_failure
-
-if TYPE_CHECKING:
-    from .env import BuildEnv
+from ..action_modes.mode import ActionMode
+from ..task.outcome import PlacementWatch, episode_failure
+from .episode_state import EpisodeState
 
 CHECK_EVERY = 10  # control steps between the joint monitor's reductions: a limit broken is
 # told within 0.1 s of simulated time
 
 
-def run_control_steps(
-    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None
-) -> tuple[str | None, int]:
-    """One environment step's control steps toward `target`: why the episode failed, if it
-    did, and how many targets newly hold a brick."""
-    loop, steps = env.loop, env.control_steps
-    failure: str | None = None
-    newly = 0
-    for k in range(1, steps + 1):
-        try:
-            failure = loop.apply(command_at(env, target, ramp, k / steps))
-        except mink.NoSolutionFound:  # the IK of an ee action: no motion within the limits
-            failure = no_motion_reason(loop.data.time)
-        newly += env.placing.update(loop)
-        env._steps += 1
-        failure = failure or episode_failure(loop, env._steps % CHECK_EVERY == 0)
-        if failure is not None or (env.placing.count == len(env.plan.bricks) and not env.linger):
-            break
-    return failure, newly
+class ControlSteps:
+    """`steps` control steps an environment step, `generator` (None: off) between the mode's
+    commands and the loop; once every target holds a brick they stop early, unless the
+    episode lingers."""
 
+    def __init__(
+        self,
+        loop: BuildLoop,
+        mode: ActionMode,
+        generator: MotionGenerator | None,
+        placing: PlacementWatch,
+        episode: EpisodeState,
+        steps: int,
+    ) -> None:
+        self.loop, self.mode, self.generator = loop, mode, generator
+        self.placing, self.episode, self.steps = placing, episode, steps
+        self.bricks = len(loop.plan.bricks)
 
-def command_at(
-    env: BuildEnv, target: np.ndarray, ramp: Callable[[float], np.ndarray] | None, share: float
-) -> np.ndarray:
-    """The command for one control step, `share` through an environment step toward `target`:
-    the `ee` mode's IK, the motion generator, or the raw path's spline `ramp`."""
-    if env.action_mode in HAND_ACTION_MODES:  # the IK's joints, through the generator
-        command = env.ee.command(env.loop, target)
-        return env.generator.step(command) if env.limit_commands else command
-    return env.generator.step(target) if ramp is None else ramp(share)
+    def run(self, target: np.ndarray) -> tuple[str | None, int]:
+        """One environment step's control steps toward `target`: why the episode failed, if
+        it did, and how many targets newly hold a brick."""
+        loop, steps, episode = self.loop, self.steps, self.episode
+        failure: str | None = None
+        newly = 0
+        for k in range(1, steps + 1):
+            try:
+                failure = loop.apply(self.command(target, k / steps))
+            except mink.NoSolutionFound:  # the IK of a hand mode: no motion within the limits
+                failure = no_motion_reason(loop.data.time)
+            newly += self.placing.update(loop)
+            episode.steps += 1
+            failure = failure or episode_failure(loop, episode.steps % CHECK_EVERY == 0)
+            if failure is not None or (self.placing.count == self.bricks and not episode.linger):
+                break
+        return failure, newly
 
-
-def episode_end(env: BuildEnv, failure: str | None) -> tuple[bool, bool, bool]:
-    """After a step: whether the build has succeeded, and Gymnasium's terminated and truncated.
-    With `linger`, a success ends the episode that long after it, a failure in that time
-    taking it back (a recording films the last release and the hands leaving)."""
-    time = env.loop.data.time
-    success = env.placing.count == len(env.plan.bricks)
-    if success and env.built_at is None:
-        env.built_at = time
-    elif failure is not None and env.built_at is not None:
-        success = False  # built, then failed while lingering
-    # a step's rounding short of the end counts as at it
-    lingering = failure is None and success and time < (env.built_at or 0.0) + env.linger - 1e-9
-    truncated = not success and time > env.config.max_sim_time
-    return success, not truncated and not lingering and (success or failure is not None), truncated
+    def command(self, target: np.ndarray, share: float) -> np.ndarray:
+        """The command for one control step, `share` through the environment step: the
+        mode's, through the motion generator where it is on."""
+        command = self.mode.command(self.loop, target, share)
+        return command if self.generator is None else self.generator.step(command)

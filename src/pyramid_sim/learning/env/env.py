@@ -1,8 +1,10 @@
 """The build as a Gymnasium environment: one episode is one build of a structure by two arms.
 
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
-targets and finger gaps (`layout.Layout`), or as `action_mode` says (docs/learning.md). The
-environment feeds bricks to the spawn spot, and judges placements and failures from what
+targets and finger gaps (`layout.Layout`), or as `action_mode` says (learning/action_modes/,
+docs/learning.md). One action's path: `step` asks the mode for its target, the control steps
+(control_steps.py) ask it for each control step's command, the motion generator smooths it,
+and the build loop (physics/loop.py) steps the physics toward it. The environment feeds bricks to the spawn spot, and judges placements and failures from what
 happens, whoever drives it; `ExpertPolicy` (`expert_action()`) is the scripted builder
 (scheduler, primitives, mink IK) as a policy. Each reset draws its episode (`variation`: where
 the bricks are fed, where the structure stands, at `full` the physics and looks) from its seed:
@@ -22,26 +24,27 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from ...choices import HAND_ACTION_MODES, ArmChoice
+from ...choices import ArmChoice
 from ...options import resolve
+from ...output.result import Tolerances
 from ...params import LINGER
 from ...physics.loop import BuildLoop
+from ...physics.motion_generator import arm_motion
+from ..action_modes.mode import ModeParts
+from ..action_modes.registry import make_mode, mode_class
+from ..expert.closure import expert_loop
+from ..expert.policy import ExpertPolicy
 from ..task import layout as lay
 from ..task import randomize as rnd
 from ..task import variation as var
-from ..task.anchors import anchor_poses
 from ..task.contract import check_modes, check_reset_options, require_live_episode
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
 from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
-from . import relative_actions as rel
-from .action_modes import action_parts, mode_motion
-from .anchored_actions import clear_frames, hand_action, waypoint_action
-from .control_steps import episode_end, run_control_steps
-from .expert import ExpertPolicy
-from .target_spline import spline_ramp
+from .control_steps import ControlSteps
+from .episode_state import EpisodeState
 
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
        "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints",
@@ -54,9 +57,10 @@ class BuildEnv(gymnasium.Env):
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
     _reset_needed = True  # Gymnasium's contract: reset before the first step
-    anchors = np.zeros((2, 3, 4))  # the anchored mode's frames, from each observation
-    built_at: float | None = None  # sim time (s) of this episode's success
     footprints = True  # the targets drawn on the table for the cameras
+    tolerances = Tolerances()  # what a placement is judged by
+    _renderer: Any = None
+    _eyes: Any = None  # the cameras' renderer, made at the first observation
 
     def __init__(
         self,
@@ -97,20 +101,16 @@ class BuildEnv(gymnasium.Env):
         self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
         self.linger = LINGER.checked(linger)  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
-        self._renderer: Any = None
-        self._eyes: Any = None  # the cameras' renderer, made at the first observation
-        # refuses a structure out of reach, before physics
-        self.episodes = EpisodeMaker(self.config, spec, arms, self.variation, self.randomize)
+        hands = mode_class(action_mode).hand_poses  # a joint mode's targets jitter, not these
+        closed = expert_loop(self.limit_commands, not hands, self.tolerances)
+        self.episodes = EpisodeMaker(  # refuses a structure out of reach, before physics
+            self.config, spec, arms, self.variation, self.randomize, closed
+        )
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
         self.lerobot_units = lerobot_units(robot, self.layout.names)
-        self.ee, self.action_units, self.action_space = action_parts(
-            action_mode, self.config, self.layout, self.control_steps, self.lerobot_units
-        )
-        self.generator = mode_motion(self.config, action_mode)
-        self._low = self.action_space.low.astype(np.float64)
-        self._high = self.action_space.high.astype(np.float64)
+        self._take_actions(action_mode)
         self.observation_space = observation_space(
             self.layout, len(self.plan.bricks), self.cameras, self.image_size
         )
@@ -118,6 +118,17 @@ class BuildEnv(gymnasium.Env):
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
         self._start_episode()
+
+    def _take_actions(self, action_mode: str) -> None:
+        """The action mode (learning/action_modes/), its space, units and motion generator."""
+        units, limit = self.lerobot_units, self.limit_commands
+        self.mode = make_mode(
+            action_mode, ModeParts(self.config, self.layout, self.control_steps, units, limit)
+        )
+        self.action_space, self.action_units = self.mode.space, self.mode.units
+        self.generator = arm_motion(self.config, self.mode.jerk_time)
+        self._low = self.action_space.low.astype(np.float64)
+        self._high = self.action_space.high.astype(np.float64)
 
     def _new_loop(self, seed: int) -> BuildLoop:
         """The episode of `seed`, on a new compiled scene if its renderers' is gone."""
@@ -131,17 +142,16 @@ class BuildEnv(gymnasium.Env):
     def _start_episode(self) -> None:
         loop = self._loop
         loop.feed_spot()  # the first brick on the spot before the first observation
-        self.placing = PlacementWatch(loop)
+        self.placing = PlacementWatch(loop, self.tolerances)
         self.goals = goals(self.plan)  # the targets' poses, build order
-        held = loop.data.ctrl[loop.handles.ctrl_index].copy()
-        self._command = (held, held)  # the last target, and where the ramp left the command
-        self.generator.reset(held)
-        self.ee.reset(loop)
+        self.generator.reset(loop.data.ctrl[loop.handles.ctrl_index])
+        self.mode.reset(loop)
         self._expert.reset()
-        self.built_at = None
-        self._steps = 0
-        self.steps_taken = 0  # environment steps in this episode
-        self.ended = False
+        self.episode = EpisodeState(self.linger, self.config.max_sim_time)
+        generator = self.generator if self.limit_commands else None
+        self._control = ControlSteps(
+            loop, self.mode, generator, self.placing, self.episode, self.control_steps
+        )
 
     # --- the Gymnasium API ---------------------------------------------------------------
     def reset(
@@ -160,20 +170,14 @@ class BuildEnv(gymnasium.Env):
         return self._observe(), episode_info(self, None, None)
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
-        require_live_episode(self._reset_needed, self.ended)
-        names = self.action_units.names if self.action_mode in HAND_ACTION_MODES else None
-        target = checked_action(action, self._low, self._high, names or self.layout.names)
-        target = waypoint_action(self.action_mode, target, self.anchors)
-        if self.action_mode == "relative":
-            target = rel.absolute(target, self.measured_state(), self.layout)
-        self.steps_taken += 1
-        ramp = None
-        if self.action_mode not in HAND_ACTION_MODES and not self.limit_commands:
-            ramp, self._command = spline_ramp(*self._command, target, self.control_steps)
-        failure, newly = run_control_steps(self, target, ramp)
+        require_live_episode(self._reset_needed, self.episode.ended)
+        action = checked_action(action, self._low, self._high, self.mode.names)
+        target = self.mode.target(action, self.measured_state())
+        self.episode.steps_taken += 1
+        failure, newly = self._control.run(target)
         self.generator.lag()  # its peak is the episode's (0 where it is not used)
-        success, terminated, truncated = episode_end(self, failure)
-        self.ended = terminated or truncated
+        built = self.placing.count == len(self.plan.bricks)
+        success, terminated, truncated = self.episode.end(self._loop.data.time, built, failure)
         return (
             self._observe(),
             float(newly),
@@ -187,8 +191,7 @@ class BuildEnv(gymnasium.Env):
         return self._expert.act()
 
     def render(self) -> np.ndarray | None:
-        """`camera_name`'s view at `width` x `height` as an RGB array (render_mode
-        "rgb_array")."""
+        """`camera_name`'s view at `width` x `height`, an RGB array (render_mode "rgb_array")."""
         if self.render_mode != "rgb_array":
             return None
         if self._renderer is None:
@@ -208,15 +211,8 @@ class BuildEnv(gymnasium.Env):
 
     # --- what a step reads and writes --------------------------------------------------------
     def held_command(self) -> np.ndarray:
-        """The command that keeps both arms and hands as they are commanded now (in the hand
-        modes, the action that does)."""
-        if self.action_mode in HAND_ACTION_MODES:
-            return hand_action(self.action_mode, self.ee.hold(self._loop), self.anchors)
-        loop = self._loop
-        held = loop.data.ctrl[loop.handles.ctrl_index]
-        if self.action_mode == "relative":
-            return rel.relative(held, self.measured_state(), self.layout)
-        return held.astype(np.float32)
+        """The action that keeps both arms and hands as commanded now, in the mode's form."""
+        return self.mode.held(self._loop, self.measured_state())
 
     def measured_state(self) -> np.ndarray:
         """Both arms' joint positions and finger gaps as measured now (the state's layout)."""
@@ -224,9 +220,7 @@ class BuildEnv(gymnasium.Env):
 
     def _observe(self) -> dict[str, Any]:
         observed = observe(self)
-        # the frames of the next anchored action: what the policy sees now
-        clears = clear_frames(self.config.robot_description)
-        self.anchors = anchor_poses(observed["pick"], clears, observed["next"])
+        self.mode.see(observed)  # the frames of the next action, where the mode has any
         return observed
 
     def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
@@ -245,6 +239,16 @@ class BuildEnv(gymnasium.Env):
     def loop(self) -> BuildLoop:
         """The build this episode runs (its parts, its expert's state)."""
         return self._loop
+
+    @property
+    def steps_taken(self) -> int:
+        """Environment steps in this episode."""
+        return self.episode.steps_taken
+
+    @property
+    def ended(self) -> bool:
+        """Whether this episode has ended (a step now needs a reset first)."""
+        return self.episode.ended
 
 
 def observe(env: BuildEnv) -> dict[str, Any]:

@@ -12,7 +12,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ...errors import ConfigError
-from ..env.expert import ExpertPolicy
+from ..expert.policy import ExpertPolicy
 
 NAMED = ("expert", "zero", "random")
 

@@ -5,6 +5,7 @@
 __all__ = [
     "episode",
     "filming",
+    "frame",
     "lead_labels",
     "record",
     "record_config",

@@ -6,18 +6,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from functools import partial
 from typing import Any
 
 import numpy as np
 
-from ...choices import WAYPOINT_MODES
 from ...errors import ActionError, PolicyError
-from ..env.action_modes import moved_entries
-from ..env.anchored_actions import hand_action, waypoint_action
 from ..env.env import BuildEnv
 from ..task.spaces import environment_state
 from .dagger import Mixer
+from .frame import Frame
 from .lead_labels import LeadLabels
 
 # What an arm is doing at a frame, by its index here (-1 never occurs: idle is 0).
@@ -41,22 +38,6 @@ def task_text(env: BuildEnv) -> str:
     """The task a recording's frames and an evaluation's policy are given, in words."""
     spec, robot = env.plan.spec, env.config.robot_description.name
     return TASK.format(structure=spec.name, size=spec.size_text(), robot=robot)
-
-
-@dataclass(frozen=True)
-class Frame:
-    """What a dataset keeps of one frame (one environment step): the observation before the
-    action, the action, and the reward, end and success that followed it."""
-
-    state: np.ndarray  # float32, the layout's order
-    environment: np.ndarray  # float32: every magazine brick's pose, then every target's
-    action: np.ndarray  # float32
-    images: dict[str, np.ndarray]  # camera -> H x W x 3 uint8
-    reward: float
-    done: bool
-    success: bool
-    primitive: tuple[int, int]  # per arm, left first: an index into PRIMITIVES
-    brick: tuple[int, int]  # per arm: the brick (build order) its task handles, -1 for none
 
 
 @dataclass(frozen=True)
@@ -100,7 +81,7 @@ class JointNoise:
 
     def __init__(self, env: BuildEnv, seed: int, scale: float) -> None:
         self.scale = scale
-        self.joints = moved_entries(env)
+        self.joints = env.mode.moved
         self.period = max(1, round(NOISE_PERIOD * env.fps))
         self.random = np.random.default_rng([seed, 0xDA27])
         self.offset = np.zeros(len(self.joints))
@@ -140,7 +121,7 @@ def expert_episode(
     frames = 0
     while True:
         action = env.expert_action()
-        anchors = env.anchors  # an anchored action's frames at this step
+        waypoints = env.mode.waypoints(action)  # in the frames of this step, if any
         primitive, brick = _doing(env)  # what the expert's action is for
         state = obs["state"].astype(np.float32)
         environment = environment_state(obs)
@@ -166,10 +147,9 @@ def expert_episode(
                 primitive,
                 brick,
             )  # fmt: skip
-        if env.action_mode in WAYPOINT_MODES:  # led as waypoints, given back in the mode's form
-            waypoint = waypoint_action(env.action_mode, action, anchors)
-            led(replace(frame, action=waypoint.astype(np.float32)), hands,
-                partial(hand_action, env.action_mode, anchors=anchors))  # fmt: skip
+        if waypoints is not None:  # led as waypoints, given back in the mode's form
+            waypoint, form = waypoints
+            led(replace(frame, action=waypoint.astype(np.float32)), hands, form)
         else:
             on_frame(frame)
         frames += 1

@@ -15,12 +15,11 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Callable
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .episode import Frame
+from .frame import Frame
 
 LEAD = 1.0  # s: how far ahead a label may be taken from
 ARRIVED = 0.01  # m from its waypoint at which a hand has arrived

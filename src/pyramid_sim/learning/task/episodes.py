@@ -4,6 +4,7 @@ again), on a scene compiled once while only the layout changes."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
@@ -13,8 +14,9 @@ from ...core.plan import Plan, make_plan
 from ...core.structures import StructureSpec
 from ...core.zone import footprint, footprint_gap
 from ...errors import ConfigError, UnreachableError
+from ...physics.closure import LoopClosure
 from ...physics.loop import BuildLoop
-from ...physics.parts import SPOT_CLEARANCE
+from ...physics.parts import SPOT_CLEARANCE, BuildParts, make_parts
 from ...physics.reach import ReachChecker, require_reachable
 from ...physics.scene import build_scene, scene_key
 from . import randomize as rnd
@@ -22,8 +24,9 @@ from . import variation as var
 
 
 class EpisodeMaker:
-    """Makes the build of the episode of a seed; the first plan (the settings' own layout) is
-    checked when it is made, so a structure out of reach is refused before any physics."""
+    """Makes the build of the episode of a seed, its loop closed by what `closure` makes of
+    its parts (none: open); the first plan (the settings' own layout) is checked when it is
+    made, so a structure out of reach is refused before any physics."""
 
     def __init__(
         self,
@@ -32,9 +35,11 @@ class EpisodeMaker:
         arms: ArmChoice,
         variation: str,
         randomize: tuple[str, ...],
+        closure: Callable[[BuildParts], LoopClosure | None] | None = None,
     ) -> None:
         self.config, self.spec, self.arms = config, spec, arms
         self.variation, self.randomize = variation, randomize
+        self.closure = closure
         self.drawn: dict[str, Any] = {}  # the last episode's draw: its layout and parts
         self.compiled: Any = None  # the last compiled scene
         self._key: SimConfig | None = None  # what it was compiled from
@@ -80,9 +85,9 @@ class EpisodeMaker:
         if self.compiled is None or self._key != key or any(p in drawn for p in rnd.VISUAL):
             self.compiled = build_scene(config, len(plan.bricks) + config.spare_bricks).model
             self._key = key
-        loop = BuildLoop.of(plan, config, self.compiled)
-        rnd.visual(loop.model, loop.data, drawn)
-        return loop
+        parts = make_parts(plan, config, self.compiled)
+        rnd.visual(parts.model, parts.data, drawn)
+        return BuildLoop(parts, None if self.closure is None else self.closure(parts))
 
 
 def check_spot_clear(plan: Plan, config: SimConfig) -> None:

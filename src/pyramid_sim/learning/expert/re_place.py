@@ -6,29 +6,26 @@ brick off its place, and nothing learned or scripted is exact)."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
-from ..choices import Arm
-from ..core.poses import Pose, symmetric_yaw_error, yaw_of
-from ..core.primitives import Step, StepKind, re_place_steps
-from ..core.scheduler import Task
-from . import names as c
-
-if TYPE_CHECKING:
-    from .loop import BuildLoop
+from ...choices import Arm
+from ...core.poses import Pose, symmetric_yaw_error, yaw_of
+from ...core.primitives import Step, StepKind, re_place_steps
+from ...core.scheduler import Task
+from ...physics import names as c
+from ...physics.parts import BuildParts
 
 TRIES = 2  # re-places of one brick before it is left as it lies
 
 
 class RePlacer:
-    """Watches each arm's releases in `loop` and loads a re-place where a brick lies further
+    """Watches each arm's releases in a build and loads a re-place where a brick lies further
     than `across` (m) or turned more than `turned` (rad) off its target."""
 
-    def __init__(self, loop: BuildLoop, across: float, turned: float) -> None:
-        self.data, self.custody = loop.data, loop.custody
-        self.runners = loop.dispatch.runners
-        self.config = loop.config
-        self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
+    def __init__(self, parts: BuildParts, across: float, turned: float) -> None:
+        self.data, self.custody = parts.data, parts.custody
+        self.runners = parts.dispatch.runners
+        self.config = parts.config
+        self._targets = {b.index: b.target.pose for b in parts.plan.bricks}
         self.across, self.turned = across, turned
         self._let_go: dict[Arm, int | None] = {a: None for a in c.ARMS}
         self.tries: dict[int, int] = {}  # re-places loaded, by brick

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import names as c
-from .handles import dof_addresses
-from .ik import DualArmIK
+from ...physics import names as c
+from ...physics.handles import dof_addresses
+from ...physics.ik import DualArmIK
 
 # Weight of (dq1 - dq3)^2 in the IK's objective, beside its frame tasks' unit costs.
 TWIST_DAMPING = 0.05

@@ -15,6 +15,7 @@ gap says open or closed, and the hand grips and releases as the scripted builder
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from gymnasium import spaces
@@ -24,9 +25,13 @@ from ...core.poses import Pose
 from ...core.primitives import StepKind
 from ...physics import names as c
 from ...physics.loop import BuildLoop
+from ...physics.motion_generator import JERK_TIME
+from ...robots import RobotDescription
 from ..task.layout import Layout
-from .ee_control import EndEffectorControl, end_effector
+from ..task.lerobot_units import own_units
+from .ee import EndEffectorControl, end_effector, hand_moved
 from .gripper_switch import GripperSwitch
+from .mode import ExpertMove, ModeParts, Waypoints
 
 FIELDS = ("x", "y", "z", "yaw", "gripper")
 NEAR = 0.05  # m of a move's end covered at the slow speed
@@ -94,8 +99,8 @@ class WaypointControl:
             if step is not None and step.kind is StepKind.MOVE and path is not None:
                 assert step.pose is not None
                 pose = path.heading(runner.elapsed).with_yaw(step.pose.yaw)
-            if loop.feedback is not None:
-                pose = loop.feedback.aim(arm, pose)
+            if loop.closure is not None:
+                pose = loop.closure.aim(arm, pose)
             action += [pose.x, pose.y, pose.z, pose.yaw, self.hands.label(runner)]
         return np.array(action)
 
@@ -118,3 +123,49 @@ def waypoints(config: SimConfig, layout: Layout, steps: int) -> WaypointControl:
         motion.control_dt,
         GripperSwitch(config, len(c.ARMS)),
     )
+
+
+def _float32(waypoint: np.ndarray) -> np.ndarray:
+    return waypoint.astype(np.float32)
+
+
+class WaypointMode:
+    """Actions of where each hand's tool centre goes and its finger gap, through the `ee`
+    mode's IK (`WaypointControl`), then the motion generator."""
+
+    moved_unit = "m"
+    hand_poses = True
+
+    def __init__(self, parts: ModeParts) -> None:
+        self.control = waypoints(parts.config, parts.layout, parts.steps)
+        self.space: spaces.Box = self.control.space
+        self.names = self.control.names
+        self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
+        self.moved = hand_moved(self.names, ("x", "y", "z"))
+        self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
+
+    @classmethod
+    def size(cls, robot: RobotDescription) -> int:
+        return len(FIELDS) * len(c.ARMS)
+
+    def reset(self, loop: BuildLoop) -> None:
+        self.control.reset(loop)
+
+    def see(self, observation: dict[str, Any]) -> None:
+        return None
+
+    def target(self, action: np.ndarray, state: np.ndarray) -> np.ndarray:
+        return action
+
+    def command(self, loop: BuildLoop, target: np.ndarray, share: float) -> np.ndarray:
+        return self.control.command(loop, target)
+
+    def held(self, loop: BuildLoop, state: np.ndarray) -> np.ndarray:
+        return self.control.hold(loop).astype(np.float32)
+
+    def expert(self, move: ExpertMove) -> np.ndarray:
+        """Where the builder's move ends, a waypoint that stays once the build is done."""
+        return self.control.expert(move.loop).astype(np.float32)
+
+    def waypoints(self, action: np.ndarray) -> Waypoints | None:
+        return action, _float32

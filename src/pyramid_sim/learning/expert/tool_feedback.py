@@ -9,17 +9,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..choices import Arm
-from ..core.poses import Pose, wrap_angle, yaw_of
-from . import names as c
-from .re_place import RePlacer
-
-if TYPE_CHECKING:
-    from .loop import BuildLoop
+from ...choices import Arm
+from ...core.poses import Pose, wrap_angle, yaw_of
+from ...physics import names as c
+from ...physics.parts import BuildParts
 
 TIME_CONSTANT = 0.2  # s of the integral: slower than the motion generator and servos' lag
 CAP = 0.02  # m: the most the aim is shifted, each axis
@@ -34,16 +30,16 @@ JOINT_SMOOTH_TIME = 0.1
 
 class ToolFeedback:
     """Each arm's aim shift (`aim`) and the measured error a move's end is judged by
-    (`error_of`), read from the loop's data at the arms' tool sites and carried bricks."""
+    (`error_of`), read from a build's data at the arms' tool sites and carried bricks."""
 
-    def __init__(self, loop: BuildLoop, smooth_time: float = 0.0) -> None:
-        self.data, self.sites = loop.data, loop.handles.tcp_site
+    def __init__(self, parts: BuildParts, smooth_time: float = 0.0) -> None:
+        self.data, self.sites = parts.data, parts.handles.tcp_site
         self.smooth_time = smooth_time  # s; 0 reads each control step as it is
-        self.dispatch, self.custody = loop.dispatch, loop.custody
-        self.dt = loop.config.motion.control_dt
-        self._targets = {b.index: b.target.pose for b in loop.plan.bricks}
-        self._ik_error = {a: loop.ik.error_of(a) for a in c.ARMS}
-        self._half_length = loop.config.brick.length / 2  # a turn's error at the brick's ends
+        self.dispatch, self.custody = parts.dispatch, parts.custody
+        self.dt = parts.config.motion.control_dt
+        self._targets = {b.index: b.target.pose for b in parts.plan.bricks}
+        self._ik_error = {a: parts.ik.error_of(a) for a in c.ARMS}
+        self._half_length = parts.config.brick.length / 2  # a turn's error at the brick's ends
         self.bias = {a: np.zeros(3) for a in c.ARMS}
         self.turn = {a: 0.0 for a in c.ARMS}  # rad, the aim's yaw shift for the brick held
         self._waited = {a: 0.0 for a in c.ARMS}
@@ -144,24 +140,3 @@ class ToolFeedback:
             return float(np.sqrt(np.sum(self._read_miss(arm) ** 2) + ends**2))
 
         return error
-
-
-def close_loop(
-    loop: BuildLoop, smooth_time: float = 0.0, re_place: tuple[float, float] | None = None
-) -> None:
-    """Close the expert's loop in `loop` on the measured tool and brick: its moves' ends
-    judged and its aim shifted by a `ToolFeedback` (reading over `smooth_time`), its releases
-    letting go at once; with `re_place` (m across, rad of yaw), a brick let go further off
-    its target set right."""
-    loop.feedback = ToolFeedback(loop, smooth_time)
-    loop.re_placer = RePlacer(loop, *re_place) if re_place is not None else None
-    loop.ik_rate.aim = loop.feedback.aim
-    loop.arrival = {a: loop.feedback.error_of(a) for a in c.ARMS}
-    for runner in loop.dispatch.runners.values():
-        runner.let_go_at_once = True  # a brick set right is let go before a jolt moves it
-
-
-def take_over(loop: BuildLoop) -> None:
-    """The IK taken to where the arms are, as the expert takes over from whoever drove them:
-    it plans from there."""
-    loop.ik.reset(*(loop.data.qpos[loop.handles.arm_qpos[a]] for a in c.ARMS))

@@ -12,6 +12,7 @@ brick lying on the table, so it cannot drive the hand into the table.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from gymnasium import spaces
@@ -20,8 +21,12 @@ from ...config import SimConfig
 from ...core.poses import Pose
 from ...physics import names as c
 from ...physics.loop import BuildLoop
+from ...physics.motion_generator import JERK_TIME
 from ...physics.reach import plan_poses
+from ...robots import RobotDescription
 from ..task.layout import Layout
+from ..task.lerobot_units import own_units
+from .mode import ExpertMove, ModeParts, Waypoints
 
 FIELDS = ("dx", "dy", "dz", "dyaw", "gripper")
 LEASH = 0.01  # m a target may lead the tool centre, along each axis
@@ -141,3 +146,51 @@ def end_effector(config: SimConfig, layout: Layout, steps: int) -> EndEffectorCo
     return EndEffectorControl(
         layout, motion.speed, motion.turn_rate, motion.control_dt, steps, floor
     )
+
+
+def hand_moved(names: tuple[str, ...], fields: tuple[str, ...]) -> np.ndarray:
+    """Which of a hand mode's entries (`names`, "arm/field") move an arm: its `fields`."""
+    return np.array([name.split("/")[-1] in fields for name in names])
+
+
+class EndEffectorMode:
+    """Actions of each hand's tool-pose change and finger gap, through the build's own IK
+    (`EndEffectorControl`), then the motion generator."""
+
+    moved_unit = "m"
+    hand_poses = True
+
+    def __init__(self, parts: ModeParts) -> None:
+        self.control = end_effector(parts.config, parts.layout, parts.steps)
+        self.space: spaces.Box = self.control.space
+        self.names = self.control.names
+        self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
+        self.moved = hand_moved(self.names, ("dx", "dy", "dz"))
+        self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
+
+    @classmethod
+    def size(cls, robot: RobotDescription) -> int:
+        return len(FIELDS) * len(c.ARMS)
+
+    def reset(self, loop: BuildLoop) -> None:
+        self.control.reset(loop)
+
+    def see(self, observation: dict[str, Any]) -> None:
+        return None
+
+    def target(self, action: np.ndarray, state: np.ndarray) -> np.ndarray:
+        return action
+
+    def command(self, loop: BuildLoop, target: np.ndarray, share: float) -> np.ndarray:
+        return self.control.command(loop, target)
+
+    def held(self, loop: BuildLoop, state: np.ndarray) -> np.ndarray:
+        return self.control.hold(loop).astype(np.float32)
+
+    def expert(self, move: ExpertMove) -> np.ndarray:
+        """The builder's move while it moves; once it has stopped, stay where aimed."""
+        action = self.control.expert if move.moving else self.control.hold
+        return action(move.loop).astype(np.float32)
+
+    def waypoints(self, action: np.ndarray) -> Waypoints | None:
+        return None

@@ -13,7 +13,15 @@ from __future__ import annotations
 import numpy as np
 from gymnasium import spaces
 
+from ...physics.loop import BuildLoop
 from ..task.layout import Layout
+from .joint import JointMode
+from .mode import ExpertMove, ModeParts
+
+# rad: the most the expert's relative action moves an arm joint, with the motion generator on
+# (`led` says why; docs/learning.md has the measurements, and why joint actions keep the
+# IK's whole lead: a held absolute target that near stops the arm)
+LEAD = 0.2
 
 
 def relative_space(layout: Layout) -> spaces.Box:
@@ -56,3 +64,27 @@ def led(target: np.ndarray, state: np.ndarray, layout: Layout, lead: float) -> n
     if most > lead:
         capped[joints] = state[joints] + change * (lead / most)
     return capped
+
+
+class RelativeMode(JointMode):
+    """The joint mode's targets, given as each arm joint's change from where it is measured
+    at the step's start; the gaps as they are."""
+
+    def __init__(self, parts: ModeParts) -> None:
+        super().__init__(parts)
+        self.lead = LEAD if parts.limit_commands else None
+        self.space = relative_space(parts.layout)
+
+    def target(self, action: np.ndarray, state: np.ndarray) -> np.ndarray:
+        return super().target(absolute(action, state, self.layout), state)
+
+    def held(self, loop: BuildLoop, state: np.ndarray) -> np.ndarray:
+        return relative(loop.data.ctrl[loop.handles.ctrl_index], state, self.layout)
+
+    def expert(self, move: ExpertMove) -> np.ndarray:
+        """The builder's joint target from where the joints are, no further ahead of them
+        than `LEAD` where the motion generator is on."""
+        target = super().expert(move)
+        if self.lead is not None:
+            target = led(target, move.state, self.layout, self.lead)
+        return relative(target, move.state, self.layout)
