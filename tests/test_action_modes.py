@@ -1,38 +1,16 @@
-"""The action modes are one interface: every name the environment accepts has a class in the
-registry, and no module outside the registry asks which mode it has (it asks the mode)."""
+"""The action modes are one interface: no module outside the registry asks which mode it has
+(it asks the mode). Read with `ast`: nothing imported (the registry's own tests, which import
+MuJoCo, are tests/physics/test_action_mode_registry.py)."""
 
 import ast
 from pathlib import Path
 
-import pytest
-
-from pyramid_sim.choices import ACTION_MODE_WORDS, ACTION_MODES, RECORD_ACTION_MODES, ROBOT_NAMES
-from pyramid_sim.errors import ConfigError
-from pyramid_sim.learning.action_modes.registry import MODES, action_size, mode_class
-from pyramid_sim.robots import robot
+from pyramid_sim.choices import ACTION_MODES
 
 ROOT = Path(__file__).resolve().parents[1]
 # the registry, and the names' own table (choices.py: the CLI's choices and their words)
 ALLOWED = ("src/pyramid_sim/learning/action_modes/registry.py", "src/pyramid_sim/choices.py")
 CHECKED = ("src", "benchmarks", "plugins", "scripts")
-
-
-def test_every_mode_name_has_its_class():
-    assert tuple(MODES) == ACTION_MODES  # the CLI's choices (choices.py imports no MuJoCo)
-    assert set(ACTION_MODE_WORDS) == set(MODES)  # and their help
-    assert set(RECORD_ACTION_MODES) <= set(MODES)
-    with pytest.raises(ConfigError, match="accepted joint, relative, ee, waypoint or anchored"):
-        mode_class("delta")
-
-
-@pytest.mark.parametrize("name", ROBOT_NAMES)
-def test_each_mode_says_its_size(name):
-    """What lerobot's plugin declares: the joint modes a command's entries (each arm's joints
-    and gap), the hand modes five a hand (x, y, z, yaw, gap), anchored six (and the anchor)."""
-    pair = robot(name)
-    motors = sum(len(arm.joints) + 1 for arm in pair.arms.values())
-    sizes = {mode: action_size(mode, pair) for mode in MODES}
-    assert sizes == {"joint": motors, "relative": motors, "ee": 10, "waypoint": 10, "anchored": 12}
 
 
 def _mode_branches(source: str) -> list[int]:

@@ -133,7 +133,7 @@ def test_a_mode_whose_width_is_not_the_actions_is_refused(tmp_path, checkpoint):
 def test_the_action_widths_are_the_plugins():
     modes = ("joint", "relative", "waypoint", "anchored")
     assert [action_entries("panda", m) for m in modes] == [16, 16, 10, 12]
-    assert action_entries("so101", "joint") == 12 and action_entries("panda", "ee") is None
+    assert action_entries("so101", "joint") == 12 and action_entries("panda", "ee") == 10
 
 
 def test_a_policy_that_is_no_checkpoint_takes_the_defaults(tmp_path):

@@ -271,6 +271,7 @@ def evaluate(
     or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray started here),
     scoring as one worker does. `options` as for `build`. Returns the `Evaluation` (its scores
     as evaluation.json has them)."""
+    from .learning.evaluation.config import EvaluateConfig
     from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
 
     options = dict(options)
@@ -281,24 +282,12 @@ def evaluate(
     if config is None:
         options["robot"] = task.robot
     config, spec = resolve(task.structure, config, {**options, **task.size}, own=EVALUATE_KEYWORDS)
-    from .learning.evaluation.evaluate import EvaluateConfig
-
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
-        policy,
-        task.structure,
-        {**task.size, **views, "arms": arms, "config": config},
-        task.variation,
-        task.fps,
-        episodes,
-        seed,
-        video,
-        max_steps,
-        task.action_mode or "joint",
-        workers,
-        backend,
-        ray_address,
-    )
+        policy, task.structure, {**task.size, **views, "arms": arms, "config": config},
+        task.variation, task.fps, episodes, seed, video, max_steps, task.action_mode or "joint",
+        workers, backend, ray_address,
+    )  # fmt: skip
     if video and out is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
     _prepare_gl(render=bool(video or views))

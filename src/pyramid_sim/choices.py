@@ -39,6 +39,14 @@ ACTION_MODE_WORDS = {
     "target)",
 }
 RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored")
+# The entries of each hand's action in the hand-pose modes (None: each joint's target or
+# change, and the gap), known without MuJoCo (the registry's classes say the same: a test
+# holds them equal), and the track a leaderboard reports each mode in: a keypose policy picks
+# each hand's pose and the simulator moves the arm between them, a continuous one commands
+# the arm every step, nothing in its action copied from the observation.
+ACTION_MODE_HAND_ENTRIES = {"joint": None, "relative": None, "ee": 5, "waypoint": 5, "anchored": 6}
+ACTION_MODE_TRACKS = {"joint": "continuous", "relative": "continuous", "ee": "continuous",
+                      "waypoint": "keypose", "anchored": "keypose"}  # fmt: skip
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin

@@ -79,6 +79,13 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         help="seconds an episode that built goes on being filmed: the last release and the "
         f"hands leaving, taught as the first; {LINGER.text} (default {RECORD_LINGER:g})",
     )
+    _add_dagger_args(p)
+    add_backend_args(p, "episodes")
+    add_out_args(p, Path("runs/dataset"))
+
+
+def _add_dagger_args(p: argparse.ArgumentParser) -> None:
+    """--policy and --beta: a DAgger round (learning/recording/dagger.py)."""
     p.add_argument(
         "--policy",
         default=None,
@@ -96,8 +103,6 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         help=f"with --policy, DAgger's beta: the share of spans the expert drives; {BETA.text} "
         "(default 0.5)",
     )
-    add_backend_args(p, "episodes")
-    add_out_args(p, Path("runs/dataset"))
 
 
 def cmd_record(args: argparse.Namespace) -> int:

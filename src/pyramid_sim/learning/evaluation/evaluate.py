@@ -9,74 +9,22 @@ depends on its seed alone, so the scores are those of one worker, bit for bit.""
 from __future__ import annotations
 
 import platform
-import tempfile
-import time
 from collections.abc import Callable
-from contextlib import closing
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from gymnasium.wrappers import TimeLimit
 
-from ...choices import EVAL_FIRST_SEED
-from ...config import MotionConfig
-from ...errors import ActionError, ConfigError, PolicyError, PyramidSimError
-from ...jobs.backends import check_backend
-from ...jobs.runner import run_jobs
-from ...output.files import atomic_path, write_json_atomic
-from ...params import EPISODES, MAX_STEPS, WORKERS
+from ...output.files import write_json_atomic
 from ...version import __version__
-from ..env.env import BuildEnv
-from ..recording.episode import step_limit
-from ..task.layout import check_seed, control_steps
-from ..task.variation import DEFAULT_LEVEL, check_level
+from .config import EVAL_SEED, SPLIT, EvaluateConfig
+from .episodes import episode_row, make_env, run_episode
 from .policies import make_policy
 from .scores import summary
+from .sharded import run_sharded
 
-EVAL_SEED = EVAL_FIRST_SEED  # recordings start at 0 (`record --seed`)
-SPLIT = (
-    "evaluation seeds first_seed..first_seed+episodes-1 (default from 100000); recordings "
-    "use seeds from 0 (default), so they never overlap for recordings of fewer than 100000 "
-    "episodes"
-)
-
-
-@dataclass(frozen=True)
-class EvaluateConfig:
-    """What an evaluation is: the policy, the task (structure, size and settings as `build`
-    takes them, the variation and step rate), how many episodes from which seed, and how many
-    of the first are filmed."""
-
-    policy: str = "expert"
-    structure: str = "pyramid-even"
-    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
-    variation: str = DEFAULT_LEVEL
-    fps: int = 25
-    episodes: int = 10
-    first_seed: int = EVAL_SEED
-    videos: int = 0  # the first episodes filmed from the overview camera
-    max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
-    action_mode: str = "joint"  # the policy's: one of choices.ACTION_MODES
-    workers: int = 1  # episodes run at once, each worker with its environment and policy
-    backend: str = "process"  # or ray: the episodes as Ray tasks
-    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
-
-    def __post_init__(self) -> None:
-        EPISODES.check_whole(self.episodes)
-        WORKERS.check_whole(self.workers)
-        check_backend(self.backend, self.ray_address)
-        check_level(self.variation)
-        control_steps(self.fps, MotionConfig().control_dt)
-        check_seed(self.first_seed)
-        check_seed(self.first_seed + self.episodes - 1)
-        if self.max_steps is not None and not MAX_STEPS.low <= self.max_steps <= MAX_STEPS.high:
-            raise ConfigError(f"max steps: {self.max_steps}; accepted {MAX_STEPS.whole_text}")
-        if not 0 <= self.videos <= self.episodes:
-            raise ConfigError(
-                f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"
-            )
+__all__ = ["EVAL_SEED", "EvaluateConfig", "Evaluation", "evaluate", "run_episode"]
 
 
 @dataclass(frozen=True)
@@ -118,51 +66,6 @@ def versions() -> dict[str, str]:
     }
 
 
-def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str, Any]:
-    """One episode of `policy` from `reset(seed=seed)` in `env` (a BuildEnv, wrapped or
-    not): its row. An episode cut by a step limit fails for it. PolicyError if the policy's
-    reset() or act() raises, or act() gives an action the environment does not take."""
-    observation, _ = env.reset(seed=seed)
-    _policy_call(policy.reset, "reset()")
-    steps, start = 0, time.perf_counter()
-    while True:
-        action = _policy_call(policy.act, "act()", observation)
-        try:
-            observation, _, terminated, truncated, info = env.step(action)
-        except ActionError as err:
-            raise PolicyError(f"act() gave an {err}") from err
-        steps += 1
-        if film is not None:
-            film(env.render())
-        if terminated or truncated:
-            break
-    return {
-        "seed": seed,
-        "success": bool(info["is_success"]),
-        "bricks_placed": int(info["bricks_placed"]),
-        "failure": info["failure"] or (f"step limit: {steps} steps" if truncated else None),
-        "truncated": bool(truncated),
-        "steps": steps,
-        "command_lag": float(info["command_lag"]),  # the motion generator's work, rad
-        "sim_time_s": info["sim_time_s"],
-        "wall_time_s": time.perf_counter() - start,
-    }
-
-
-def make_env(config: EvaluateConfig) -> Any:
-    """The environment an evaluation's episodes run in, cut at its step limit."""
-    built = BuildEnv(
-        config.structure,
-        variation=config.variation,
-        fps=config.fps,
-        render_mode="rgb_array" if config.videos else None,
-        action_mode=config.action_mode,
-        **config.options,
-    )
-    limit = config.max_steps or step_limit(len(built.plan.bricks), config.fps)
-    return TimeLimit(built, max_episode_steps=limit)
-
-
 def evaluate(
     config: EvaluateConfig,
     out: Path | None = None,
@@ -175,11 +78,11 @@ def evaluate(
     try:
         policy = make_policy(config.policy, env)  # a bad policy refused before any worker
         if config.workers > 1 or config.backend == "ray":
-            rows = _run_away(config, out, on_episode)
+            rows = run_sharded(config, out, on_episode)
         else:
             rows = []
             for i in range(config.episodes):
-                rows.append(_episode(env, policy, config, i, out))
+                rows.append(episode_row(env, policy, config, i, out))
                 if on_episode is not None:
                     on_episode(rows[-1])
     finally:
@@ -213,119 +116,6 @@ def evaluate(
         path = out / "evaluation.json"
         write_json_atomic(path, scores)
     return Evaluation(path, scores)
-
-
-_WORKER: dict[str, Any] = {}  # this worker process's evaluation, environment and policy
-
-
-@dataclass(frozen=True)
-class _EpisodeAway:
-    """One episode run in a worker process or a Ray task: its row, and its film's bytes where
-    it is among the first filmed (the evaluation's machine writes the file, so a Ray node
-    needs no disk shared with it). A policy's error is handed back, not raised: it is the
-    user's, and is said in one line."""
-
-    config: EvaluateConfig
-
-    def __call__(self, i: int) -> dict[str, Any]:
-        if _WORKER.get("config") != self.config:
-            if "env" in _WORKER:
-                _WORKER.pop("env").close()
-            env = make_env(self.config)
-            _WORKER.update(config=self.config, env=env, policy=make_policy(self.config.policy, env))
-        env, policy = _WORKER["env"], _WORKER["policy"]
-        try:
-            if i < self.config.videos:
-                with tempfile.TemporaryDirectory(prefix="pyramid-sim-film-") as tmp:
-                    film = Path(tmp) / "episode.mp4"
-                    row = _episode(env, policy, self.config, i, None, film)
-                    return {"row": row, "film": film.read_bytes()}
-            return {"row": _episode(env, policy, self.config, i, None)}
-        except PolicyError as err:
-            return {"policy_error": str(err)}
-
-
-def _run_away(
-    config: EvaluateConfig, out: Path | None, on_episode: Callable[[dict[str, Any]], Any] | None
-) -> list[dict[str, Any]]:
-    """The episodes' rows in seed order, run by the job runner on `config.workers` processes
-    or Ray tasks; `on_episode` hears each as it ends. A worker's crash or a policy's error
-    stops the evaluation (PyramidSimError, PolicyError), its films unwritten."""
-    ends = run_jobs(
-        _EpisodeAway(config),
-        range(config.episodes),
-        workers=config.workers,
-        backend=config.backend,
-        address=config.ray_address,
-        warm=("pyramid_sim.learning.evaluation.evaluate",),
-    )
-    done: dict[int, dict[str, Any]] = {}
-    with closing(ends):  # an interrupt, or a failure, stops every worker at once
-        for end in ends:
-            if end.failure is not None:
-                seed = config.first_seed + end.job
-                raise PyramidSimError(f"episode {end.job + 1} (seed {seed}): {end.failure}")
-            if "policy_error" in end.value:
-                raise PolicyError(end.value["policy_error"])
-            done[end.job] = end.value
-            if on_episode is not None:
-                on_episode(end.value["row"])
-    if out is not None:
-        for i, value in sorted(done.items()):
-            if "film" in value:
-                seed = config.first_seed + i
-                with atomic_path(out / f"episode_{seed}.mp4") as tmp:
-                    tmp.write_bytes(value["film"])
-    return [done[i]["row"] for i in range(config.episodes)]
-
-
-def _episode(
-    env: Any,
-    policy: Any,
-    config: EvaluateConfig,
-    i: int,
-    out: Path | None,
-    film: Path | None = None,
-) -> dict:
-    """Episode `i`'s row, filmed if among the first `videos` (into `out`, or the file
-    `film`); a PolicyError names the policy, the episode and its seed (the user's code: one
-    line, and no evaluation.json)."""
-    seed = config.first_seed + i
-    if film is None and out is not None and i < config.videos:
-        film = out / f"episode_{seed}.mp4"
-    try:
-        if film is not None:
-            return _filmed(env, policy, seed, film, config.fps)
-        return run_episode(env, policy, seed)
-    except PolicyError as err:
-        raise PolicyError(
-            f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed {seed}): {err}"
-        ) from err.__cause__
-
-
-def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str, Any]:
-    """An episode filmed from the overview camera into `path`, a frame each step, streamed
-    into a file that lands whole or not at all."""
-    import imageio.v2 as imageio
-
-    rows: list[dict[str, Any]] = []
-
-    def film(tmp: Path) -> None:
-        writer: Any = imageio.get_writer(str(tmp), format="FFMPEG", fps=fps, macro_block_size=1)
-        with writer:
-            rows.append(run_episode(env, policy, seed, writer.append_data))
-
-    with atomic_path(path) as tmp:
-        film(tmp)
-    return rows[0]
-
-
-def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
-    """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
-    try:
-        return method(*args)
-    except Exception as err:
-        raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err
 
 
 def _plain(options: dict[str, Any]) -> dict[str, Any]:

@@ -11,14 +11,19 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from ...choices import ARMS, DEFAULT_VARIATION, FPS_CHOICES, RECORD_ACTION_MODES, in_words
+from ...choices import (
+    ACTION_MODE_HAND_ENTRIES,
+    ARMS,
+    DEFAULT_VARIATION,
+    FPS_CHOICES,
+    RECORD_ACTION_MODES,
+    in_words,
+)
 from ...errors import ConfigError
 from ...robots import DEFAULT_ROBOT, robot
 from .checkpoint_training import Trained, read_training
 
 IMAGES = "observation.images."
-# a waypoint is each hand's x, y, z, yaw and gap; an anchored one its anchor too
-HAND_ENTRIES = {"waypoint": 5, "anchored": 6}
 WORDS = {"action_mode": "action mode"}  # as messages name a setting
 
 
@@ -77,13 +82,13 @@ def checkpoint_views(policy: str) -> dict[str, object]:
     return {"cameras": tuple(views), "image_size": sizes.pop()}
 
 
-def action_entries(robot_name: str, mode: str) -> int | None:
-    """How many entries `robot_name`'s action has in `mode` (None for `ee`, which no
-    recording writes): its motors' for joint targets, five or six a hand for hand poses."""
-    if mode in ("joint", "relative"):
+def action_entries(robot_name: str, mode: str) -> int:
+    """How many entries `robot_name`'s action has in `mode`: its motors' for joint targets,
+    five or six a hand for hand poses (`choices.ACTION_MODE_HAND_ENTRIES`)."""
+    hand = ACTION_MODE_HAND_ENTRIES[mode]
+    if hand is None:
         return sum(len(arm.joints) + 1 for arm in robot(robot_name).arms.values())
-    hand = HAND_ENTRIES.get(mode)
-    return hand * len(ARMS) if hand else None
+    return hand * len(ARMS)
 
 
 def _filled(task: Task) -> Task:

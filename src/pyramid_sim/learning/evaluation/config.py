@@ -1,0 +1,58 @@
+"""What an evaluation is: the policy, the task, the episodes and their seeds (held out from
+recordings), how many are filmed, and how many run at once."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...choices import EVAL_FIRST_SEED
+from ...config import MotionConfig
+from ...errors import ConfigError
+from ...jobs.backends import check_backend
+from ...params import EPISODES, MAX_STEPS, WORKERS
+from ..task.layout import check_seed, control_steps
+from ..task.variation import DEFAULT_LEVEL, check_level
+
+EVAL_SEED = EVAL_FIRST_SEED  # recordings start at 0 (`record --seed`)
+SPLIT = (
+    "evaluation seeds first_seed..first_seed+episodes-1 (default from 100000); recordings "
+    "use seeds from 0 (default), so they never overlap for recordings of fewer than 100000 "
+    "episodes"
+)
+
+
+@dataclass(frozen=True)
+class EvaluateConfig:
+    """What an evaluation is: the policy, the task (structure, size and settings as `build`
+    takes them, the variation and step rate), how many episodes from which seed, and how many
+    of the first are filmed."""
+
+    policy: str = "expert"
+    structure: str = "pyramid-even"
+    options: dict[str, Any] = field(default_factory=dict)  # sizes and settings
+    variation: str = DEFAULT_LEVEL
+    fps: int = 25
+    episodes: int = 10
+    first_seed: int = EVAL_SEED
+    videos: int = 0  # the first episodes filmed from the overview camera
+    max_steps: int | None = None  # an episode's step limit (default: `step_limit`)
+    action_mode: str = "joint"  # the policy's: one of choices.ACTION_MODES
+    workers: int = 1  # episodes run at once, each worker with its environment and policy
+    backend: str = "process"  # or ray: the episodes as Ray tasks
+    ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
+
+    def __post_init__(self) -> None:
+        EPISODES.check_whole(self.episodes)
+        WORKERS.check_whole(self.workers)
+        check_backend(self.backend, self.ray_address)
+        check_level(self.variation)
+        control_steps(self.fps, MotionConfig().control_dt)
+        check_seed(self.first_seed)
+        check_seed(self.first_seed + self.episodes - 1)
+        if self.max_steps is not None and not MAX_STEPS.low <= self.max_steps <= MAX_STEPS.high:
+            raise ConfigError(f"max steps: {self.max_steps}; accepted {MAX_STEPS.whole_text}")
+        if not 0 <= self.videos <= self.episodes:
+            raise ConfigError(
+                f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"
+            )

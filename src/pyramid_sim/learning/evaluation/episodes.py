@@ -1,0 +1,111 @@
+"""One episode of a policy in an evaluation's environment, and its row: run here, or in a
+worker (sharded.py), filmed or not."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from gymnasium.wrappers import TimeLimit
+
+from ...errors import ActionError, PolicyError
+from ...output.files import atomic_path
+from ..env.env import BuildEnv
+from ..recording.episode import step_limit
+from .config import EvaluateConfig
+
+
+def make_env(config: EvaluateConfig) -> Any:
+    """The environment an evaluation's episodes run in, cut at its step limit."""
+    built = BuildEnv(
+        config.structure,
+        variation=config.variation,
+        fps=config.fps,
+        render_mode="rgb_array" if config.videos else None,
+        action_mode=config.action_mode,
+        **config.options,
+    )
+    limit = config.max_steps or step_limit(len(built.plan.bricks), config.fps)
+    return TimeLimit(built, max_episode_steps=limit)
+
+
+def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str, Any]:
+    """One episode of `policy` from `reset(seed=seed)` in `env` (a BuildEnv, wrapped or
+    not): its row. An episode cut by a step limit fails for it. PolicyError if the policy's
+    reset() or act() raises, or act() gives an action the environment does not take."""
+    observation, _ = env.reset(seed=seed)
+    _policy_call(policy.reset, "reset()")
+    steps, start = 0, time.perf_counter()
+    while True:
+        action = _policy_call(policy.act, "act()", observation)
+        try:
+            observation, _, terminated, truncated, info = env.step(action)
+        except ActionError as err:
+            raise PolicyError(f"act() gave an {err}") from err
+        steps += 1
+        if film is not None:
+            film(env.render())
+        if terminated or truncated:
+            break
+    return {
+        "seed": seed,
+        "success": bool(info["is_success"]),
+        "bricks_placed": int(info["bricks_placed"]),
+        "failure": info["failure"] or (f"step limit: {steps} steps" if truncated else None),
+        "truncated": bool(truncated),
+        "steps": steps,
+        "command_lag": float(info["command_lag"]),  # the motion generator's work, rad
+        "sim_time_s": info["sim_time_s"],
+        "wall_time_s": time.perf_counter() - start,
+    }
+
+
+def episode_row(
+    env: Any,
+    policy: Any,
+    config: EvaluateConfig,
+    i: int,
+    out: Path | None,
+    film: Path | None = None,
+) -> dict:
+    """Episode `i`'s row, filmed if among the first `videos` (into `out`, or the file
+    `film`); a PolicyError names the policy, the episode and its seed (the user's code: one
+    line, and no evaluation.json)."""
+    seed = config.first_seed + i
+    if film is None and out is not None and i < config.videos:
+        film = out / f"episode_{seed}.mp4"
+    try:
+        if film is not None:
+            return _filmed(env, policy, seed, film, config.fps)
+        return run_episode(env, policy, seed)
+    except PolicyError as err:
+        raise PolicyError(
+            f"policy: {config.policy!r}, episode {i + 1} of {config.episodes} (seed {seed}): {err}"
+        ) from err.__cause__
+
+
+def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str, Any]:
+    """An episode filmed from the overview camera into `path`, a frame each step, streamed
+    into a file that lands whole or not at all."""
+    import imageio.v2 as imageio
+
+    rows: list[dict[str, Any]] = []
+
+    def film(tmp: Path) -> None:
+        writer: Any = imageio.get_writer(str(tmp), format="FFMPEG", fps=fps, macro_block_size=1)
+        with writer:
+            rows.append(run_episode(env, policy, seed, writer.append_data))
+
+    with atomic_path(path) as tmp:
+        film(tmp)
+    return rows[0]
+
+
+def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
+    """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
+    try:
+        return method(*args)
+    except Exception as err:
+        raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err
