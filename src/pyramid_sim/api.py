@@ -271,7 +271,6 @@ def evaluate(
     or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray started here),
     scoring as one worker does. `options` as for `build`. Returns the `Evaluation` (its scores
     as evaluation.json has them)."""
-    from .learning.evaluation.config import EvaluateConfig
     from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
 
     options = dict(options)
@@ -282,6 +281,8 @@ def evaluate(
     if config is None:
         options["robot"] = task.robot
     config, spec = resolve(task.structure, config, {**options, **task.size}, own=EVALUATE_KEYWORDS)
+    from .learning.evaluation.config import EvaluateConfig  # MuJoCo: once the task is settled
+
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
         policy, task.structure, {**task.size, **views, "arms": arms, "config": config},
