@@ -257,7 +257,10 @@ def evaluate(
     scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     from .learning.evaluation.evaluate import EvaluateConfig
+    from .learning.evaluation.policies import check_spec
     from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
+
+    policy = check_spec(policy)
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again

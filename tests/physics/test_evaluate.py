@@ -5,6 +5,7 @@ matches what `record` writes."""
 
 import json
 import os
+import sys
 
 import av
 import gymnasium
@@ -13,6 +14,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
+from pyramid_sim.cli import main
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 TASK = {"layers": 1}  # the smallest task: two bricks, one per arm
@@ -170,6 +172,69 @@ def test_a_users_policy_that_fails_is_named_in_one_line_with_its_episode(
          "--layers", "1", "--episodes", "2", "--max-steps", "5", "--quiet", "--out", str(out)]
     )  # fmt: skip
     assert line.startswith(f"pyramid-sim: error: {words}") and not out.exists()
+
+
+USER_MODULES = {
+    "syntax_error_policy": "def f(:\n",
+    "raising_policy": "1 / 0\n",
+    "exiting_policy": "import sys\n\n\ndef factory(env):\n    sys.exit(3)\n",
+}
+
+
+@pytest.mark.parametrize(
+    "spec, words",
+    [
+        (
+            "syntax_error_policy:f",
+            "policy: 'syntax_error_policy:f' cannot be loaded: importing 'syntax_error_policy' "
+            "raised SyntaxError: invalid syntax (syntax_error_policy.py, line 1); accepted "
+            "module:factory, a module that imports",
+        ),
+        (
+            "raising_policy:f",
+            "policy: 'raising_policy:f' cannot be loaded: importing 'raising_policy' raised "
+            "ZeroDivisionError: division by zero",
+        ),
+        (
+            "exiting_policy:factory",
+            "policy: 'exiting_policy:factory' failed to make its policy (SystemExit: 3); "
+            "accepted a factory that returns a policy",
+        ),
+        ("", "policy: '' is not one; accepted expert, zero, random, module:factory, or a "),
+    ],
+)
+def test_a_users_module_that_fails_or_exits_is_one_line_from_the_current_folder(
+    spec, words, refused, tmp_path, monkeypatch
+):
+    """A module in the current folder is found (as `python -m` finds one); one that does not
+    import, or whose factory exits, is refused in one line with exit 2 (a traceback and exit
+    1 before, or a silent exit 3), and an empty policy is not taken for the current folder."""
+    for name, text in USER_MODULES.items():
+        (tmp_path / f"{name}.py").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", list(sys.path))  # the command adds the folder: undone
+    line = refused(
+        ["evaluate", "--policy", spec, "--structure", "pyramid-even", "--layers", "1",
+         "--episodes", "1", "--max-steps", "5", "--quiet", "--out", "run"]
+    )  # fmt: skip
+    assert line.startswith(f"pyramid-sim: error: {words}") and not (tmp_path / "run").exists()
+
+
+def test_a_policy_module_in_the_current_folder_is_found(tmp_path, monkeypatch, capsys):
+    (tmp_path / "still_policy_here.py").write_text(
+        "def factory(env):\n    return lambda observation: env.unwrapped.held_command()\n"
+    )
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    monkeypatch.delitem(sys.modules, "still_policy_here", raising=False)
+    code = main(
+        ["evaluate", "--policy", "still_policy_here:factory", "--structure", "pyramid-even",
+         "--layers", "1", "--episodes", "1", "--max-steps", "5", "--quiet", "--out", "run"]
+    )  # fmt: skip
+    assert code == 0, capsys.readouterr().err
+    doc = json.loads((tmp_path / "run/evaluation.json").read_text())
+    assert doc["rows"][0]["steps"] == 5 and doc["failures"] == {"step limit": 1}
+    sys.modules.pop("still_policy_here", None)
 
 
 def test_a_checkpoint_folder_needs_lerobot_and_says_so(refused, tmp_path, monkeypatch):

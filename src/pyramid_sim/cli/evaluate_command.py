@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import os
+import sys
 from pathlib import Path
 
 from ..choices import ACTION_MODES, EVAL_FIRST_SEED
@@ -25,8 +27,9 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         "--policy",
         default="expert",
         metavar="POLICY",
-        help="expert, zero (hold still), random, module:factory (called with the environment), "
-        "or a lerobot checkpoint folder (where lerobot is installed) (default expert)",
+        help="expert, zero (hold still), random, module:factory (called with the environment; "
+        "the current folder is on the import path, as with python -m), or a lerobot "
+        "checkpoint folder (where lerobot is installed) (default expert)",
     )
     add_structure_args(p)
     add_physics_args(
@@ -58,6 +61,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     import pyramid_sim
 
     config, spec, sizes = episode_inputs(args, "evaluated")
+    if "" not in sys.path and os.getcwd() not in sys.path:
+        sys.path.insert(0, os.getcwd())  # a policy module beside the user, as python -m finds
     with (
         removed_if_failed([args.out]),
         holding([(args.out, "out")]),
