@@ -157,7 +157,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     if broken:
         print(
             f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
-            "their points measure nothing (see failure_reason in sweep.csv)",
+            "their points measure nothing (see failure_reason in sweep.csv); the same command "
+            "with --retry-failed (and a larger --timeout) runs them again",
             file=sys.stderr,
         )
     return 0 if len(rows) == runs and not broken else EXIT_FAILED
