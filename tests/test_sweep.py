@@ -128,9 +128,7 @@ def _fake_run(spec):
 def test_the_pool_turns_crashes_and_timeouts_into_failed_rows_and_goes_on():
     config = SweepConfig(axes=(parse_axis("friction", "0.5,1"),), repeats=3)
     results: list[RunResult] = []
-    start = time.monotonic()
     run_builds(config.runs(), workers=2, timeout=3.0, on_result=results.append, run=_fake_run)
-    assert time.monotonic() - start < 40
     assert sorted(r.spec.key() for r in results) == sorted(s.key() for s in config.runs())
     by_seed = {}
     for r in results:
