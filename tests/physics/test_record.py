@@ -247,6 +247,8 @@ def test_a_refused_recording_names_the_setting_that_differs_and_both_values(
         (["--ray-address", "auto"], "ray address: only with --backend ray"),
         (["--action-mode", "ee"], "--action-mode: invalid choice: 'ee' (choose from 'joint', "),
         (["--linger", "11"], "linger: '11' is out of range; accepted [0, 10]"),
+        (["--randomize", "all,friction"], "randomize: 'all' stands alone, not beside"),
+        (["--randomize", "friction,friction"], "randomize: friction, friction names one twice"),
     ],
 )
 def test_bad_record_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):

@@ -52,9 +52,9 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "--randomize",
         default="",
         metavar="A,B,...",
-        help="parts drawn per episode from its seed: all, or friction, brick_mass, "
-        "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, textures, "
-        "camera (default none)",
+        help="parts drawn per episode from its seed: all, none, or some of friction, "
+        "brick_mass, grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
+        "textures, camera, each once (default none)",
     )
     p.add_argument(
         "--workers",

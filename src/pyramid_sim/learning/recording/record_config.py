@@ -18,6 +18,7 @@ from ...errors import ConfigError
 from ...jobs.backends import check_backend
 from ...params import EPISODES, LINGER, NOISE, WORKERS
 from ..task.layout import check_image_size, control_steps
+from ..task.randomize import check_parts
 from ..task.variation import DEFAULT_LEVEL, check_level
 
 
@@ -48,6 +49,8 @@ class RecordConfig:
         control_steps(self.fps, MotionConfig().control_dt)
         check_image_size(self.image_size)
         check_level(self.variation)
+        if not check_parts(self.randomize):  # "none" is no part: kept as no parts are
+            object.__setattr__(self, "randomize", ())
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
         NOISE.check(self.noise)
