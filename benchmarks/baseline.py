@@ -150,7 +150,7 @@ def record(out: Path, recipe: Recipe) -> float:
 
     start = time.perf_counter()
     pyramid_sim.record(
-        out / "demos", recipe.structure, robot=recipe.robot, layers=recipe.layers,
+        recipe.structure, out=out / "demos", robot=recipe.robot, layers=recipe.layers,
         episodes=recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=recipe.image_size, variation=recipe.variation,
         noise=recipe.noise, workers=recipe.workers, action_mode=recipe.action_mode,

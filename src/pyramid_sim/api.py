@@ -26,7 +26,16 @@ from .choices import (
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .errors import ConfigError, MachineError
-from .options import SIZE_KEYWORDS, resolve, settings, structure
+from .options import (
+    SIZE_KEYWORDS,
+    callback_argument,
+    names_argument,
+    path_argument,
+    plain_numbers,
+    resolve,
+    settings,
+    structure,
+)
 from .output.result import BuildResult
 
 __all__ = ["build", "evaluate", "plan", "record", "settings", "structure"]
@@ -75,11 +84,18 @@ def build(
     `on_start(plan)` once the plan is checked reachable and the folders held, `on_placed(n)`
     when n bricks are placed, `on_frame(n)` when n frames are filmed."""
     config, spec = resolve(name, config, options, own=BUILD_KEYWORDS)
+    for hook, what in ((on_start, "on_start"), (on_placed, "on_placed"), (on_frame, "on_frame")):
+        callback_argument(hook, what)
+    if video_config is not None and not isinstance(video_config, VideoConfig):
+        raise ConfigError(
+            f"video_config: {video_config!r} is not a VideoConfig; accepted "
+            "pyramid_sim.VideoConfig(...) or None"
+        )
     vc = video_config or VideoConfig()
     if video is not None:
         check_film(vc, config)
     films = _films(vc, video, snapshot)
-    folders = _written_folders(out, films)
+    folders = _written_folders(path_argument(out, "out", "a folder's path"), films)
     prepare, run_build = _physics(render=bool(films))
     plan = prepare(spec, config, arms)
     from .output.files import removed_if_failed
@@ -111,22 +127,24 @@ def _films(
     """The film and the still asked for, by suffix; ConfigError for a path without its
     suffix."""
     films = {}
-    for suffix, path in ((".mp4", video), (".png", snapshot)):
+    for suffix, given in ((".mp4", video), (".png", snapshot)):
+        what = f"{suffix[1:]} path"
+        path = path_argument(given, what, f"a file's path ending in {suffix}")
         if path is not None:
-            if Path(path).suffix.lower() != suffix:
-                raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-            films[suffix] = (vc, Path(path))
+            if path.suffix.lower() != suffix:
+                raise ConfigError(f"{what}: {str(path)!r} must end in {suffix}")
+            films[suffix] = (vc, path)
     return films
 
 
 def _written_folders(
-    out: str | Path | None, films: dict[str, tuple[VideoConfig, Path]]
+    out: Path | None, films: dict[str, tuple[VideoConfig, Path]]
 ) -> list[tuple[Path, str]]:
     """Each folder the build writes, as it is named in messages; ConfigError for one that
     cannot be written (checked before any physics, and nothing is made)."""
     from .output.files import check_writable_dir
 
-    folders = [(Path(out), "out")] if out is not None else []
+    folders = [(out, "out")] if out is not None else []
     folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
     for folder, what in folders:
         check_writable_dir(folder, what)
@@ -171,15 +189,16 @@ def _prepare_gl(render: bool) -> None:
 
 
 # record's own keywords: not settings of the build
-RECORD_KEYWORDS = ("episodes", "seed", "fps", "cameras", "image_size", "variation", "randomize",
-                   "workers", "backend", "ray_address", "noise", "linger", "action_mode",
-                   "on_frame", "on_episode", "arms")  # fmt: skip
+RECORD_KEYWORDS = ("out", "episodes", "seed", "fps", "cameras", "image_size", "variation",
+                   "randomize", "workers", "backend", "ray_address", "noise", "linger",
+                   "action_mode", "on_frame", "on_episode", "arms", "repair")  # fmt: skip
+CAMERA_NAMES = "overview, front, top, left_wrist, right_wrist"
 
 
 def record(
-    out: str | Path,
     name: str = "pyramid-even",
-    *,
+    *old_order: Any,
+    out: str | Path | None = None,
     arms: ArmChoice = "both",
     episodes: int = 1,
     seed: int = 0,
@@ -196,35 +215,58 @@ def record(
     action_mode: str = "joint",
     on_frame: Any = None,
     on_episode: Any = None,
+    repair: bool = False,
     config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
-    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
-    `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
-    `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
-    layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once, in
-    processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
+    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in the folder
+    `out`: `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras`
+    at `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
+    layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once,
+    in processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
     started here). With `noise` (rad), what is executed is the expert's joint targets plus an
     offset drawn each second, the label the expert's, planned from where the arm is (DART); a
     build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
-    action as its change from the frame's state. Episodes already in `out` are kept.
-    `on_frame(episode, its frames so far)` hears each frame (with workers, an episode's all at
-    once), `on_episode(episodes in the dataset)` the count before the first is filmed and after
-    each lands. `options` as for `build`."""
+    action as its change from the frame's state. Episodes already in `out` are kept; a
+    folder that holds anything else is refused, and so is an episode whose files are damaged
+    (cut short, or not the frames its record claims), unless `repair` records it again.
+    `out` is held against another run while this one records. `on_frame(episode, its frames
+    so far)` hears each frame (with workers, an episode's all at once), `on_episode(episodes
+    in the dataset)` the count before the first is filmed and after each lands. `options` as
+    for `build`: the structure comes first, as in `build`, `plan` and `evaluate`."""
+    if old_order or out is None:
+        raise ConfigError(
+            "out: record takes the structure first and the dataset's folder as out=, as "
+            "build, plan and evaluate take the structure first; accepted "
+            "record('pyramid-even', out='runs/dataset', ...), not record(folder, structure)"
+        )
+    folder = path_argument(out, "out", "a folder's path")
+    assert folder is not None
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
+    for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
+        callback_argument(hook, what)
     from .learning.recording.record import RecordConfig
     from .learning.recording.record import record as run
+    from .learning.task.layout import check_image_size
+    from .output.files import check_writable_dir, removed_if_failed
+    from .output.lock import holding
 
+    check_writable_dir(folder)
+    numbers = plain_numbers({"episodes": episodes, "seed": seed, "fps": fps, "noise": noise,
+                             "workers": workers, "linger": linger})  # fmt: skip
+    size = check_image_size(image_size)  # two whole numbers, numpy's among them
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
-    size: Any = tuple(image_size)  # checked by RecordConfig
     settings_ = RecordConfig(
-        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, tuple(cameras),
-        size, variation, tuple(randomize), True, workers, backend, ray_address, noise,
-        action_mode, linger,
+        name, {**sizes, "arms": arms, "config": config}, numbers["episodes"], numbers["seed"],
+        numbers["fps"], names_argument(cameras, "cameras", CAMERA_NAMES), size, variation,
+        names_argument(randomize, "randomize", "all, none, or some of the parts"), True,
+        numbers["workers"], backend, ray_address, numbers["noise"], action_mode,
+        numbers["linger"],
     )  # fmt: skip
-    _prepare_gl(render=bool(cameras))
+    _prepare_gl(render=bool(settings_.cameras))
 
-    return run(Path(out), settings_, on_frame, on_episode)
+    with removed_if_failed([folder]), holding([(folder, "out")]):
+        return run(folder, settings_, on_frame, on_episode, repair=bool(repair))
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
@@ -256,29 +298,32 @@ def evaluate(
     the cameras it was trained on. `options` as for `build`. Returns the `Evaluation` (its
     scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
+    callback_argument(on_episode, "on_episode")
+    folder = path_argument(out, "out", "a folder's path")
     from .learning.evaluation.evaluate import EvaluateConfig
     from .learning.evaluation.policies import check_spec
     from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
+    from .output.files import check_writable_dir, removed_if_failed
+    from .output.lock import holding
 
     policy = check_spec(policy)
-
+    if folder is not None:
+        check_writable_dir(folder)
+    numbers = plain_numbers({"fps": fps, "episodes": episodes, "seed": seed, "video": video,
+                             "max_steps": max_steps})  # fmt: skip
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
-        policy,
-        name,
-        {**sizes, **views, "arms": arms, "config": config},
-        variation,
-        fps,
-        episodes,
-        seed,
-        video,
-        max_steps,
-        action_mode,
-    )
-    if video and out is None:
+        policy, name, {**sizes, **views, "arms": arms, "config": config}, variation,
+        numbers["fps"], numbers["episodes"], numbers["seed"], numbers["video"],
+        numbers["max_steps"], action_mode,
+    )  # fmt: skip
+    if video and folder is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
     _prepare_gl(render=bool(video or views))
     from .learning.evaluation.evaluate import evaluate as run
 
-    return run(wanted, Path(out) if out is not None else None, on_episode)
+    if folder is None:
+        return run(wanted, None, on_episode)
+    with removed_if_failed([folder]), holding([(folder, "out")]):
+        return run(wanted, folder, on_episode)

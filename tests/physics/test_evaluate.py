@@ -88,7 +88,7 @@ def test_the_first_episodes_are_filmed_a_frame_a_step(tmp_path):
         (["--episodes", "2", "--video", "3"], "video: 3 episodes filmed; accepted 0 to the 2"),
         (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
         (["--variation", "wild"], "invalid choice: 'wild'"),
-        (["--max-steps", "0"], "max steps: 0; accepted 1 to 10000000"),
+        (["--max-steps", "0"], "max steps: 0 is out of range; accepted 1 to 10000000"),
     ],
 )
 def test_bad_evaluate_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
@@ -258,7 +258,7 @@ def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
     observation.images.<camera>, at the same shapes, and the task's text."""
     root = tmp_path / "d"
     pyramid_sim.record(
-        root, "pyramid-even", episodes=1, cameras=("overview",), image_size=(32, 48), **TASK
+        "pyramid-even", out=root, episodes=1, cameras=("overview",), image_size=(32, 48), **TASK
     )
     info = json.loads((root / "meta/info.json").read_text())
     env = gymnasium.make(
@@ -294,3 +294,34 @@ def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
             break
     assert truncated and steps == 10 and "is_success" in info_
     env.close()
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        ({"policy": None}, "policy: None is not one; accepted expert, zero, random"),
+        ({"policy": object()}, "policy: <object object at"),
+        ({"out": "afile"}, "out: 'afile' is not a folder; accepted a folder"),
+        ({"out": 5}, "out: 5 is not a path; accepted a folder's path"),
+        ({"max_steps": 1.5}, "max steps: 1.5 is not a whole number; accepted 1 to 10000000"),
+        ({"on_episode": "print"}, "on_episode: 'print' cannot be called"),
+    ],
+)
+def test_the_evaluate_api_refuses_as_the_command_line_does(kwargs, words, tmp_path, monkeypatch):
+    """They were AttributeError, FileExistsError, or Gymnasium's TimeLimit failing on 1.5
+    steps: one ConfigError naming the argument and what it takes, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "afile").write_text("mine")
+    policy = kwargs.pop("policy", "expert")
+    with pytest.raises(pyramid_sim.ConfigError) as refused:
+        pyramid_sim.evaluate(policy, "pyramid-even", episodes=1, **TASK, **kwargs)
+    assert words in str(refused.value)
+    assert [p.name for p in tmp_path.iterdir()] == ["afile"]
+    assert (tmp_path / "afile").read_text() == "mine"
+
+
+def test_numpy_numbers_evaluate_as_python_numbers():
+    evaluation = pyramid_sim.evaluate(
+        "zero", "pyramid-even", layers=np.int64(1), episodes=np.int64(1), max_steps=np.int64(3)
+    )
+    assert evaluation.scores["rows"][0]["steps"] == 3 and evaluation.scores["episodes"] == 1

@@ -142,7 +142,7 @@ def test_darts_noise_on_waypoints_moves_the_hands_positions_only():
 def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
-        root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="waypoint",
+        "pyramid-even", out=root, layers=1, episodes=1, cameras=(), action_mode="waypoint",
         variation="layout",
     )  # fmt: skip
     assert recorded.failed == ()

@@ -8,8 +8,6 @@ import sys
 from pathlib import Path
 
 from ..choices import ACTION_MODES, EVAL_FIRST_SEED
-from ..output.files import removed_if_failed
-from ..output.lock import holding
 from ..params import MAX_STEPS
 from .args import (
     add_out_args,
@@ -63,11 +61,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     config, spec, sizes = episode_inputs(args, "evaluated")
     if "" not in sys.path and os.getcwd() not in sys.path:
         sys.path.insert(0, os.getcwd())  # a policy module beside the user, as python -m finds
-    with (
-        removed_if_failed([args.out]),
-        holding([(args.out, "out")]),
-        Progress("episodes", args.episodes, "episode", quiet=args.quiet) as progress,
-    ):
+    # the library holds --out, and removes it if it made it and fails
+    with Progress("episodes", args.episodes, "episode", quiet=args.quiet) as progress:
         progress.start()
         evaluation = pyramid_sim.evaluate(
             args.policy,

@@ -102,12 +102,18 @@ def check_writable_dir(path: Path, what: str = "out") -> None:
             )
         probe = probe.parent
     if not probe.is_dir():
-        raise ConfigError(f"{what}: {str(probe)!r} is not a folder")
+        raise ConfigError(
+            f"{what}: {str(probe)!r} is not a folder; accepted a folder, or a path where one "
+            "can be made"
+        )
     try:
         with tempfile.TemporaryFile(dir=probe):
             pass
     except OSError as err:
-        raise ConfigError(f"{what}: {str(probe)!r} is not writable ({err.strerror})") from None
+        raise ConfigError(
+            f"{what}: {str(probe)!r} is not writable ({err.strerror}); accepted a folder this "
+            "user may write in"
+        ) from None
 
 
 @contextmanager

@@ -60,8 +60,8 @@ class EvaluateConfig:
         control_steps(self.fps, MotionConfig().control_dt)
         check_seed(self.first_seed)
         check_seed(self.first_seed + self.episodes - 1)
-        if self.max_steps is not None and not MAX_STEPS.low <= self.max_steps <= MAX_STEPS.high:
-            raise ConfigError(f"max steps: {self.max_steps}; accepted {MAX_STEPS.whole_text}")
+        if self.max_steps is not None:
+            MAX_STEPS.check_whole(self.max_steps)  # 1.5 steps reached Gymnasium's TimeLimit
         if not 0 <= self.videos <= self.episodes:
             raise ConfigError(
                 f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"

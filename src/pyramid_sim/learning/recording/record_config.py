@@ -48,6 +48,11 @@ class RecordConfig:
         EPISODES.check_whole(self.episodes)
         control_steps(self.fps, MotionConfig().control_dt)
         check_image_size(self.image_size)
+        if not self.cameras and tuple(self.image_size) != RECORD_IMAGE_SIZE:
+            raise ConfigError(
+                f"image size: {tuple(self.image_size)} with no camera films nothing; accepted "
+                "a camera to film at it, or the default size"
+            )
         check_level(self.variation)
         if not check_parts(self.randomize):  # "none" is no part: kept as no parts are
             object.__setattr__(self, "randomize", ())
