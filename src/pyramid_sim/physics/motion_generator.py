@@ -46,11 +46,14 @@ class MotionLimits:
 
 
 def motion_limits(
-    robot: RobotDescription, close_time: float, jerk_time: float = JERK_TIME
+    robot: RobotDescription,
+    close_time: float,
+    jerk_time: float = JERK_TIME,
+    share: float = ACCELERATION_SHARE,
 ) -> MotionLimits:
     """The robot's limits in the command's order: the joints at the IK's speed margins and
-    ACCELERATION_SHARE of their acceleration limits, reached in `jerk_time`, the finger gap
-    closing at GRIPPER_SPEED strokes a `close_time` and opening at OPENING_SPEED."""
+    `share` of their acceleration limits, reached in `jerk_time`, the finger gap closing at
+    GRIPPER_SPEED strokes a `close_time` and opening at OPENING_SPEED."""
     speed: list[float] = []
     falling: list[float] = []
     acceleration: list[float] = []
@@ -60,7 +63,7 @@ def motion_limits(
         for i, (v, a) in enumerate(zip(arm.velocity_limits, arm.acceleration_limits)):
             speed.append((ARM_VELOCITY_MARGIN if i < 4 else VELOCITY_MARGIN) * v)
             falling.append(speed[-1])
-            acceleration.append(ACCELERATION_SHARE * a)
+            acceleration.append(share * a)
             fingers.append(False)
         speed.append(OPENING_SPEED * stroke / close_time)
         falling.append(GRIPPER_SPEED * stroke / close_time)
@@ -134,7 +137,10 @@ class MotionGenerator:
         return lag
 
 
-def arm_motion(config: SimConfig, jerk_time: float = JERK_TIME) -> MotionGenerator:
-    """The motion generator of the settings' robot, stepped at the control rate."""
-    limits = motion_limits(config.robot_description, config.gripper.close_time, jerk_time)
+def arm_motion(
+    config: SimConfig, jerk_time: float = JERK_TIME, share: float = ACCELERATION_SHARE
+) -> MotionGenerator:
+    """The motion generator of the settings' robot, stepped at the control rate, its joints
+    at `share` of their acceleration limits."""
+    limits = motion_limits(config.robot_description, config.gripper.close_time, jerk_time, share)
     return MotionGenerator(limits, config.motion.control_dt)

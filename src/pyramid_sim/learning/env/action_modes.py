@@ -11,7 +11,13 @@ from gymnasium import spaces
 
 from ...choices import HAND_ACTION_MODES, WAYPOINT_MODES
 from ...config import SimConfig
-from ...physics.motion_generator import JERK_TIME, JOINT_JERK_TIME, MotionGenerator, arm_motion
+from ...physics.motion_generator import (
+    ACCELERATION_SHARE,
+    JERK_TIME,
+    JOINT_JERK_TIME,
+    MotionGenerator,
+    arm_motion,
+)
 from ..task.layout import Layout
 from ..task.lerobot_units import LerobotUnits, own_units
 from ..task.spaces import joint_space
@@ -54,7 +60,11 @@ def moved_entries(env: BuildEnv) -> np.ndarray:
 
 def mode_motion(config: SimConfig, action_mode: str) -> MotionGenerator:
     """The motion generator for `action_mode`: behind the IK (the hand modes) it follows the
-    IK closely; fed a policy's joint targets straight, it is their only filter, and reaches
-    its jerk slower (docs/learning.md, "The joint modes' filtering")."""
-    hands = action_mode in HAND_ACTION_MODES
-    return arm_motion(config, JERK_TIME if hands else JOINT_JERK_TIME)
+    IK closely, at the robot's own acceleration share where it sets one (Baxter's, whose
+    shoulder has less torque to spare); fed a policy's joint targets straight, it is their
+    only filter, and reaches its jerk slower (docs/learning.md, "The joint modes'
+    filtering")."""
+    if action_mode not in HAND_ACTION_MODES:
+        return arm_motion(config, JOINT_JERK_TIME)
+    share = config.robot_description.hand_modes_acceleration_share
+    return arm_motion(config, JERK_TIME, ACCELERATION_SHARE if share is None else share)
