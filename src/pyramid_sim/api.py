@@ -29,13 +29,11 @@ from .errors import ConfigError, MachineError
 from .options import (
     SIZE_KEYWORDS,
     callback_argument,
-    names_argument,
-    path_argument,
-    plain_numbers,
     resolve,
     settings,
     structure,
 )
+from .output import written
 from .output.result import BuildResult
 
 __all__ = ["build", "evaluate", "plan", "record", "settings", "structure"]
@@ -94,14 +92,11 @@ def build(
     vc = video_config or VideoConfig()
     if video is not None:
         check_film(vc, config)
-    films = _films(vc, video, snapshot)
-    folders = _written_folders(path_argument(out, "out", "a folder's path"), films)
+    films = written.films(vc, video, snapshot)
+    folders = written.build_folders(written.out_folder(out), films)
     prepare, run_build = _physics(render=bool(films))
     plan = prepare(spec, config, arms)
-    from .output.files import removed_if_failed
-    from .output.lock import holding
-
-    with removed_if_failed([folder for folder, _ in folders]), holding(folders):
+    with written.held(folders):
         if on_start is not None:
             on_start(plan)
         result: BuildResult = run_build(
@@ -119,36 +114,6 @@ def build(
 
 BUILD_KEYWORDS = ("arms", "video", "snapshot", "video_config", "out", "on_start", "on_placed",
                   "on_frame")  # fmt: skip
-
-
-def _films(
-    vc: VideoConfig, video: str | Path | None, snapshot: str | Path | None
-) -> dict[str, tuple[VideoConfig, Path]]:
-    """The film and the still asked for, by suffix; ConfigError for a path without its
-    suffix."""
-    films = {}
-    for suffix, given in ((".mp4", video), (".png", snapshot)):
-        what = f"{suffix[1:]} path"
-        path = path_argument(given, what, f"a file's path ending in {suffix}")
-        if path is not None:
-            if path.suffix.lower() != suffix:
-                raise ConfigError(f"{what}: {str(path)!r} must end in {suffix}")
-            films[suffix] = (vc, path)
-    return films
-
-
-def _written_folders(
-    out: Path | None, films: dict[str, tuple[VideoConfig, Path]]
-) -> list[tuple[Path, str]]:
-    """Each folder the build writes, as it is named in messages; ConfigError for one that
-    cannot be written (checked before any physics, and nothing is made)."""
-    from .output.files import check_writable_dir
-
-    folders = [(out, "out")] if out is not None else []
-    folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
-    for folder, what in folders:
-        check_writable_dir(folder, what)
-    return folders
 
 
 def _physics(render: bool) -> tuple[Callable[..., Plan], Callable[..., BuildResult]]:
@@ -192,7 +157,6 @@ def _prepare_gl(render: bool) -> None:
 RECORD_KEYWORDS = ("out", "episodes", "seed", "fps", "cameras", "image_size", "variation",
                    "randomize", "workers", "backend", "ray_address", "noise", "linger",
                    "action_mode", "on_frame", "on_episode", "arms", "repair")  # fmt: skip
-CAMERA_NAMES = "overview, front, top, left_wrist, right_wrist"
 
 
 def record(
@@ -228,44 +192,32 @@ def record(
     offset drawn each second, the label the expert's, planned from where the arm is (DART); a
     build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
     action as its change from the frame's state. Episodes already in `out` are kept; a
-    folder that holds anything else is refused, and so is an episode whose files are damaged
-    (cut short, or not the frames its record claims), unless `repair` records it again.
-    `out` is held against another run while this one records. `on_frame(episode, its frames
-    so far)` hears each frame (with workers, an episode's all at once), `on_episode(episodes
-    in the dataset)` the count before the first is filmed and after each lands. `options` as
-    for `build`: the structure comes first, as in `build`, `plan` and `evaluate`."""
+    folder holding anything else is refused, and so is an episode whose files are damaged,
+    unless `repair` records it again. `on_frame(episode, its frames so far)` hears each frame
+    (with workers, an episode's all at once), `on_episode(episodes in the dataset)` the count
+    before the first is filmed and after each lands. `options` as for `build`."""
     if old_order or out is None:
         raise ConfigError(
             "out: record takes the structure first and the dataset's folder as out=, as "
             "build, plan and evaluate take the structure first; accepted "
             "record('pyramid-even', out='runs/dataset', ...), not record(folder, structure)"
         )
-    folder = path_argument(out, "out", "a folder's path")
-    assert folder is not None
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
         callback_argument(hook, what)
+    folder = written.out_folder(out)
+    assert folder is not None
     from .learning.recording.record import RecordConfig
     from .learning.recording.record import record as run
-    from .learning.task.layout import check_image_size
-    from .output.files import check_writable_dir, removed_if_failed
-    from .output.lock import holding
 
-    check_writable_dir(folder)
-    numbers = plain_numbers({"episodes": episodes, "seed": seed, "fps": fps, "noise": noise,
-                             "workers": workers, "linger": linger})  # fmt: skip
-    size = check_image_size(image_size)  # two whole numbers, numpy's among them
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     settings_ = RecordConfig(
-        name, {**sizes, "arms": arms, "config": config}, numbers["episodes"], numbers["seed"],
-        numbers["fps"], names_argument(cameras, "cameras", CAMERA_NAMES), size, variation,
-        names_argument(randomize, "randomize", "all, none, or some of the parts"), True,
-        numbers["workers"], backend, ray_address, numbers["noise"], action_mode,
-        numbers["linger"],
+        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, cameras,
+        image_size, variation, randomize, True, workers, backend, ray_address, noise,
+        action_mode, linger,
     )  # fmt: skip
     _prepare_gl(render=bool(settings_.cameras))
-
-    with removed_if_failed([folder]), holding([(folder, "out")]):
+    with written.held([(folder, "out")]):
         return run(folder, settings_, on_frame, on_episode, repair=bool(repair))
 
 
@@ -299,31 +251,23 @@ def evaluate(
     scores as evaluation.json has them)."""
     config, spec = resolve(name, config, dict(options), own=EVALUATE_KEYWORDS)
     callback_argument(on_episode, "on_episode")
-    folder = path_argument(out, "out", "a folder's path")
+    folder = written.out_folder(out)
     from .learning.evaluation.evaluate import EvaluateConfig
+    from .learning.evaluation.evaluate import evaluate as run
     from .learning.evaluation.policies import check_spec
     from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_views
-    from .output.files import check_writable_dir, removed_if_failed
-    from .output.lock import holding
 
     policy = check_spec(policy)
-    if folder is not None:
-        check_writable_dir(folder)
-    numbers = plain_numbers({"fps": fps, "episodes": episodes, "seed": seed, "video": video,
-                             "max_steps": max_steps})  # fmt: skip
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
-        policy, name, {**sizes, **views, "arms": arms, "config": config}, variation,
-        numbers["fps"], numbers["episodes"], numbers["seed"], numbers["video"],
-        numbers["max_steps"], action_mode,
+        policy, name, {**sizes, **views, "arms": arms, "config": config}, variation, fps,
+        episodes, seed, video, max_steps, action_mode,
     )  # fmt: skip
     if video and folder is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
     _prepare_gl(render=bool(video or views))
-    from .learning.evaluation.evaluate import evaluate as run
-
     if folder is None:
         return run(wanted, None, on_episode)
-    with removed_if_failed([folder]), holding([(folder, "out")]):
+    with written.held([(folder, "out")]):
         return run(wanted, folder, on_episode)

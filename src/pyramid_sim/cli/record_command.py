@@ -55,6 +55,12 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         "brick_mass, grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
         "textures, camera, each once (default none)",
     )
+    _add_run_args(p)
+
+
+def _add_run_args(p: argparse.ArgumentParser) -> None:
+    """How the episodes are run: workers, DART's noise, the linger after a success, the
+    repair of damaged episodes, the backend and the folder."""
     p.add_argument(
         "--workers",
         type=whole("workers", WORKERS.whole_text),

@@ -19,6 +19,7 @@ from gymnasium.wrappers import TimeLimit
 from ...choices import EVAL_FIRST_SEED
 from ...config import MotionConfig
 from ...errors import ActionError, ConfigError, PolicyError
+from ...options import plain_numbers
 from ...output.files import atomic_path, write_json_atomic
 from ...params import EPISODES, MAX_STEPS
 from ...version import __version__
@@ -55,6 +56,8 @@ class EvaluateConfig:
     action_mode: str = "joint"  # the policy's: one of choices.ACTION_MODES
 
     def __post_init__(self) -> None:
+        for name in ("fps", "episodes", "first_seed", "videos", "max_steps"):
+            object.__setattr__(self, name, plain_numbers({name: getattr(self, name)})[name])
         EPISODES.check_whole(self.episodes)
         check_level(self.variation)
         control_steps(self.fps, MotionConfig().control_dt)
