@@ -134,7 +134,7 @@ def record(out: Path, recipe: Recipe, episodes: int | None = None, **driver: Any
 
     start = time.perf_counter()
     pyramid_sim.record(
-        out / "demos", recipe.structure, robot=recipe.robot, layers=recipe.layers,
+        recipe.structure, out=out / "demos", robot=recipe.robot, layers=recipe.layers,
         episodes=episodes or recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=recipe.image_size, variation=recipe.variation,
         noise=0.0 if driver else recipe.noise, workers=recipe.workers,

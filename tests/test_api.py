@@ -1,6 +1,7 @@
 """The Python API without physics: plans, settings and refusals (tests/physics/test_api_build.py
 builds)."""
 
+import numpy as np
 import pytest
 
 import pyramid_sim
@@ -59,6 +60,45 @@ def test_an_unknown_keyword_names_every_keyword_the_function_takes():
         "video_config",
     ):
         assert name in str(err.value).split("accepted", 1)[1]
+
+
+@pytest.mark.parametrize(
+    "call, words",
+    [
+        (lambda: pyramid_sim.plan("list", goals={"x": 0.7}),
+         "goals: {'x': 0.7} is not a path; accepted a JSON or CSV file's path, as a str or Path"),
+        (lambda: pyramid_sim.plan("pyramid", config="x"),
+         "config: 'x' is not a SimConfig; accepted pyramid_sim.SimConfig(...) or None"),
+        (lambda: pyramid_sim.build("pyramid", layers=1, video=b"x.mp4"),
+         "mp4 path: b'x.mp4' is not a path; accepted a file's path ending in .mp4"),
+        (lambda: pyramid_sim.build("pyramid", layers=1, snapshot=3),
+         "png path: 3 is not a path; accepted a file's path ending in .png"),
+        (lambda: pyramid_sim.build("pyramid", layers=1, out=3),
+         "out: 3 is not a path; accepted a folder's path"),
+        (lambda: pyramid_sim.build("pyramid", layers=1, on_placed=5),
+         "on_placed: 5 cannot be called; accepted a function, or None"),
+        (lambda: pyramid_sim.build("pyramid", layers=1, video_config="x"),
+         "video_config: 'x' is not a VideoConfig; accepted pyramid_sim.VideoConfig(...)"),
+    ],
+)  # fmt: skip
+def test_an_argument_of_the_wrong_kind_is_refused_naming_it_before_any_physics(call, words):
+    """They were TypeError and AttributeError, or a callback's failure halfway through a
+    build: one ConfigError naming the argument and what it takes, as the command line does."""
+    with pytest.raises(pyramid_sim.ConfigError) as err:
+        call()
+    assert words in str(err.value)
+
+
+def test_numpy_numbers_are_numbers():
+    """np.int64(2) layers were "out of range" and np.float32(0.5) friction "not a number";
+    they reach the settings as Python's own, which JSON writes."""
+    plan = pyramid_sim.plan("pyramid", layers=np.int64(2), friction=np.float32(0.5))
+    assert len(plan.bricks) == 3 and type(plan.spec.layers) is int
+    config = pyramid_sim.settings(friction=np.float32(0.5), seed=np.int64(3))
+    assert (config.brick.friction, config.seed) == (0.5, 3)
+    assert type(config.brick.friction) is float and type(config.seed) is int
+    with pytest.raises(pyramid_sim.ConfigError, match="layers: 99 is out of range"):
+        pyramid_sim.plan("pyramid", layers=np.int64(99))
 
 
 def test_build_refuses_a_wrong_video_suffix_before_any_physics():

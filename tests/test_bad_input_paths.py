@@ -73,6 +73,20 @@ def test_a_file_path_that_names_a_folder_is_refused_and_writes_nothing(
     assert list((in_empty_folder / name).iterdir()) == []
 
 
+@pytest.mark.parametrize("key", [k for k in PATH_FLAGS if k.endswith("--out")])
+def test_an_output_folder_that_is_a_link_to_nothing_is_refused_naming_the_link(
+    in_empty_folder, refused, key
+):
+    """The OS said only "[Errno 17] File exists: 'dangling'" (exit 1) when it came to make the
+    folder; refused up front, the link left as it was."""
+    (in_empty_folder / "dangling").symlink_to("nowhere")
+    path = "dangling/scene.xml" if key == "scene --out" else "dangling"
+    err = refused([*PATH_FLAGS[key], path])
+    assert "out: 'dangling' is a link to 'nowhere', which does not exist; accepted a folder" in err
+    assert [p.name for p in in_empty_folder.iterdir()] == ["dangling"]
+    assert os.readlink(in_empty_folder / "dangling") == "nowhere"
+
+
 @pytest.mark.parametrize(
     "args, words",
     [

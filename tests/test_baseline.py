@@ -79,7 +79,7 @@ def test_the_recipes_linger_reaches_the_recording_and_one_out_of_range_is_refuse
     import pyramid_sim
 
     calls: dict[str, dict] = {}
-    monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
+    monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.update(record=kw))
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.linger == 2.0  # the last release filmed
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
@@ -97,7 +97,7 @@ def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, mon
 
     calls: dict[str, dict] = {}
 
-    def recorded(out, name, **kwargs):
+    def recorded(name, **kwargs):
         calls["record"] = kwargs
 
     def evaluated(policy, name, **kwargs):
@@ -118,7 +118,7 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     import pyramid_sim
 
     calls: dict[str, dict] = {}
-    monkeypatch.setattr(pyramid_sim, "record", lambda out, name, **kw: calls.update(record=kw))
+    monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.update(record=kw))
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.image_size == (224, 224)  # record's default
     given = ["--out", str(tmp_path / "b"), "--cameras", "overview", "--image-size", "96"]

@@ -44,6 +44,11 @@ KEYS = (
     "breakdown_other_us",
 )
 
+# Figures that are one timing less another (the build's control step is the build's time less
+# its physics replayed, `other` what the timers did not see): how fast is the benchmark's to
+# report (benchmarks/run.py), never a test's to assert.
+DIFFERENCES = ("control_us_per_control_step", "breakdown_other_us")
+
 
 def _bench(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run(
@@ -73,7 +78,8 @@ def test_benchmark_reports_every_figure(tmp_path):
     figures = json.loads(out.read_text())
     for key in KEYS:
         assert isinstance(figures[key], (int, float)) and math.isfinite(figures[key]), key
-        assert figures[key] > 0, key
+        if key not in DIFFERENCES:  # a rate or a count; a difference of two timings is not
+            assert figures[key] > 0, key  # bound to be positive on a busy machine
     # The 2-brick build succeeded, in the build and in every sweep run, and replaying its
     # recorded controls alone reproduced it bit for bit (so the replay rate is its physics).
     assert figures["build_success"] and figures["bricks_placed"] == 2
@@ -85,9 +91,6 @@ def test_benchmark_reports_every_figure(tmp_path):
     assert figures["ik_solves_per_control_step"] == pytest.approx(
         figures["ik_solves"] / control_steps
     )
-    # The IK's floor is part of the control step it is measured against.
-    assert figures["ik_floor_us_per_control_step"] < figures["control_us_per_control_step"]
-    assert figures["ik_floor_us_per_control_step"] < figures["breakdown_ik_us"]
     assert "| timed build: the IK, us/step |" in run.stdout
     # The seconds-a-brick targets are the 20-brick pyramid's: not judged on this 2-brick one.
     assert "| simulated s per brick | " in run.stdout and "| not this build |" in run.stdout

@@ -134,8 +134,38 @@ def test_a_sweep_whose_every_run_timed_out_fails(tmp_path):
     )
     assert proc.returncode == 1, proc.stderr
     assert "sweep incomplete: 1 of 1 runs crashed or timed out" in proc.stderr
+    assert "with --retry-failed (and a larger --timeout) runs them again" in proc.stderr
     rows = (tmp_path / "s" / "sweep.csv").read_text().splitlines()
     assert len(rows) == 2 and "timeout" in rows[1]
+    # Resumed as it was, the failed point is not run again; with --retry-failed it is, its
+    # new row appended, and the later row stands.
+    again = subprocess.run(
+        [*proc.args, "--timeout", "600"], capture_output=True, text=True, timeout=300
+    )
+    assert again.returncode == 1 and "sweep incomplete: 1 of 1" in again.stderr
+    retried = subprocess.run(
+        [*proc.args, "--timeout", "600", "--retry-failed"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert retried.returncode == 0, retried.stderr
+    assert "1/1 builds succeeded (1 run now, 0 already in the CSV)" in retried.stdout
+    rows = (tmp_path / "s" / "sweep.csv").read_text().splitlines()
+    assert len(rows) == 3 and "timeout" in rows[1] and ",true," in rows[2]
+
+
+@pytest.mark.physics
+def test_a_sweep_csv_that_is_not_text_is_refused_and_left_as_it_was(tmp_path, refused):
+    """It was a UnicodeDecodeError traceback."""
+    out = tmp_path / "s"
+    out.mkdir()
+    junk = (bytes(range(128, 256)) + b"\n") * 3
+    (out / "sweep.csv").write_bytes(junk)
+    line = refused(["sweep", "--structure", "pyramid", "--layers", "1", "--out", str(out)])
+    assert f"out: {str(out / 'sweep.csv')!r} is not a sweep's table (" in line
+    assert "accepted a new folder, or one whose sweep.csv a sweep wrote" in line
+    assert (out / "sweep.csv").read_bytes() == junk and sorted(out.iterdir()) == [out / "sweep.csv"]
 
 
 def test_an_unknown_robot_is_one_line_listing_the_presets(refused):

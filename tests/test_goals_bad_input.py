@@ -3,6 +3,7 @@ one line naming the file, the row and the accepted range, exit status 2, with no
 never a traceback, a number read wrongly, or a value far past any reach taken."""
 
 import json
+import os
 
 import pytest
 
@@ -91,3 +92,17 @@ def test_a_json_goal_written_as_a_string_or_a_boolean_is_refused(tmp_path, refus
         assert "goals: g.json row 1: yaw True is not a number" in err
     else:
         assert f"goals: g.json row 1: yaw {shown} is a string; accepted a JSON number" in err
+
+
+@pytest.mark.parametrize("kind, words", [("fifo", "(a FIFO)"), ("folder", "(a folder)")])
+def test_a_goals_path_that_is_not_a_regular_file_is_refused_not_read(
+    tmp_path, refused, kind, words
+):
+    """Read, a FIFO waits for a writer forever (`plan` hung); a folder cannot be read."""
+    path = tmp_path / "goals.csv"
+    if kind == "fifo":
+        os.mkfifo(path)
+    else:
+        path.mkdir()
+    line = refused(["plan", "--structure", "list", "--goals", str(path)])
+    assert f"goals: {str(path)!r} is not a regular file {words}; accepted a JSON or CSV" in line

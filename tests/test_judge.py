@@ -1,5 +1,8 @@
 """The judge, without physics: every check of a successful build can fail, and the reason
-names it (the physics tests make the same checks fire in real builds)."""
+names it. Real builds and episodes trip the meters behind the checks: a brick slides past the
+slip limit in a greased grip (tests/physics/test_reliability.py), the arms meet, a joint
+passes its speed or its torque limit in an episode (tests/physics/test_env.py), and a clean
+build reads each above zero (tests/physics/test_build.py)."""
 
 from dataclasses import replace
 

@@ -165,3 +165,23 @@ def test_ctrl_c_while_a_frame_renders_is_an_interruption(tmp_path, capsys, fake_
     fake_build.during = lambda i: (_ for _ in ()).throw(ctypes.ArgumentError("argument 1: x"))
     with pytest.raises(ctypes.ArgumentError):  # a real one is a bug: its traceback shows
         main(_build(tmp_path / "run"))
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize("command", ["scene", "record", "evaluate"])
+def test_every_command_that_writes_is_refused_a_folder_another_run_holds(
+    tmp_path, refused, command
+):
+    """One rule for every command that writes: `scene` wrote into a folder a running build
+    held, and `record` and `evaluate` held their --out only from the command line (the
+    library now holds it, as `build` does)."""
+    out = tmp_path / "run"
+    argv = {
+        "scene": ["scene", "--layers", "1", "--out", str(out / "scene.xml")],
+        "record": ["record", "--layers", "1", "--cameras", "none", "--out", str(out)],
+        "evaluate": ["evaluate", "--layers", "1", "--episodes", "1", "--out", str(out)],
+    }[command]
+    with folder_lock(out):
+        err = refused([*argv[:1], "--structure", "pyramid-even", *argv[1:]])
+    assert f"out: {str(out)!r} is held by another pyramid-sim run (pid {os.getpid()})" in err
+    assert list(out.iterdir()) == []  # nothing written beside the holder's (gone) lock

@@ -47,6 +47,14 @@ def _sleepy(job: int) -> int:
     return os.getpid()
 
 
+def _sleepy_then_marked(job: tuple[float, str]) -> int:
+    """Sleep, then leave a file saying the job ran to its end."""
+    time.sleep(job[0])
+    with open(job[1], "w") as mark:
+        mark.write("done")
+    return os.getpid()
+
+
 def test_crashes_exceptions_and_timeouts_end_as_failures_and_the_others_go_on():
     ends = {e.job: e for e in run_jobs(_work, [0, 1, 2, 3, 4], workers=2, timeout=2.0)}
     assert sorted(ends) == [0, 1, 2, 3, 4]
@@ -71,8 +79,7 @@ def test_the_timeout_counts_from_when_the_worker_is_ready(tmp_path, monkeypatch)
     (tmp_path / "slow_import_for_runner.py").write_text("import time\ntime.sleep(3)\n")
     monkeypatch.syspath_prepend(str(tmp_path))
     ends = list(run_jobs(_sleepy, [0.5], workers=1, timeout=2.0, warm=("slow_import_for_runner",)))
-    assert ends[0].failure is None
-    assert 0.5 <= ends[0].wall_s < 2.0
+    assert ends[0].failure is None  # counted from the import's start, it would have timed out
 
 
 def test_a_worker_that_cannot_start_is_one_error_not_an_endless_respawn():
@@ -80,16 +87,18 @@ def test_a_worker_that_cannot_start_is_one_error_not_an_endless_respawn():
         list(run_jobs(_work, [0], workers=1, warm=("no_such_module_anywhere",)))
 
 
-def test_closing_the_run_stops_every_worker_at_once():
-    ends = run_jobs(_sleepy, [0.0, 60.0, 60.0], workers=2)
+def test_closing_the_run_stops_every_worker_at_once(tmp_path):
+    """Stopped, not waited for: the jobs still sleeping never reach their end."""
+    marks = [tmp_path / f"job{k}" for k in range(3)]
+    jobs = [(seconds, str(mark)) for seconds, mark in zip((0.0, 60.0, 60.0), marks)]
+    ends = run_jobs(_sleepy_then_marked, jobs, workers=2)
     first = next(ends)
     pid = first.value
-    start = time.monotonic()
     ends.close()  # as an interrupt in the caller's loop does
-    assert time.monotonic() - start < 2.0
     with pytest.raises(ProcessLookupError):
         os.kill(pid, 0)
     assert multiprocessing.active_children() == []  # the two still sleeping are gone too
+    assert [m.exists() for m in marks] == [True, False, False]  # killed, not waited for
 
 
 def test_a_ray_tasks_failure_reads_as_the_process_backends():

@@ -26,7 +26,14 @@ from .choices import (
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .errors import ConfigError, MachineError
-from .options import SIZE_KEYWORDS, resolve, settings, structure
+from .options import (
+    SIZE_KEYWORDS,
+    callback_argument,
+    resolve,
+    settings,
+    structure,
+)
+from .output import written
 from .output.result import BuildResult
 
 __all__ = ["build", "evaluate", "plan", "record", "settings", "structure"]
@@ -75,17 +82,21 @@ def build(
     `on_start(plan)` once the plan is checked reachable and the folders held, `on_placed(n)`
     when n bricks are placed, `on_frame(n)` when n frames are filmed."""
     config, spec = resolve(name, config, options, own=BUILD_KEYWORDS)
+    for hook, what in ((on_start, "on_start"), (on_placed, "on_placed"), (on_frame, "on_frame")):
+        callback_argument(hook, what)
+    if video_config is not None and not isinstance(video_config, VideoConfig):
+        raise ConfigError(
+            f"video_config: {video_config!r} is not a VideoConfig; accepted "
+            "pyramid_sim.VideoConfig(...) or None"
+        )
     vc = video_config or VideoConfig()
     if video is not None:
         check_film(vc, config)
-    films = _films(vc, video, snapshot)
-    folders = _written_folders(out, films)
+    films = written.films(vc, video, snapshot)
+    folders = written.build_folders(written.out_folder(out), films)
     prepare, run_build = _physics(render=bool(films))
     plan = prepare(spec, config, arms)
-    from .output.files import removed_if_failed
-    from .output.lock import holding
-
-    with removed_if_failed([folder for folder, _ in folders]), holding(folders):
+    with written.held(folders):
         if on_start is not None:
             on_start(plan)
         result: BuildResult = run_build(
@@ -103,34 +114,6 @@ def build(
 
 BUILD_KEYWORDS = ("arms", "video", "snapshot", "video_config", "out", "on_start", "on_placed",
                   "on_frame")  # fmt: skip
-
-
-def _films(
-    vc: VideoConfig, video: str | Path | None, snapshot: str | Path | None
-) -> dict[str, tuple[VideoConfig, Path]]:
-    """The film and the still asked for, by suffix; ConfigError for a path without its
-    suffix."""
-    films = {}
-    for suffix, path in ((".mp4", video), (".png", snapshot)):
-        if path is not None:
-            if Path(path).suffix.lower() != suffix:
-                raise ConfigError(f"{suffix[1:]} path: {str(path)!r} must end in {suffix}")
-            films[suffix] = (vc, Path(path))
-    return films
-
-
-def _written_folders(
-    out: str | Path | None, films: dict[str, tuple[VideoConfig, Path]]
-) -> list[tuple[Path, str]]:
-    """Each folder the build writes, as it is named in messages; ConfigError for one that
-    cannot be written (checked before any physics, and nothing is made)."""
-    from .output.files import check_writable_dir
-
-    folders = [(Path(out), "out")] if out is not None else []
-    folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
-    for folder, what in folders:
-        check_writable_dir(folder, what)
-    return folders
 
 
 def _physics(render: bool) -> tuple[Callable[..., Plan], Callable[..., BuildResult]]:
@@ -171,15 +154,16 @@ def _prepare_gl(render: bool) -> None:
 
 
 # record's own keywords: not settings of the build
-RECORD_KEYWORDS = ("episodes", "seed", "fps", "cameras", "image_size", "variation", "randomize",
-                   "workers", "backend", "ray_address", "noise", "linger", "action_mode",
-                   "policy", "beta", "on_frame", "on_episode", "arms")  # fmt: skip
+RECORD_KEYWORDS = ("out", "episodes", "seed", "fps", "cameras", "image_size", "variation",
+                   "randomize", "workers", "backend", "ray_address", "noise", "linger",
+                   "action_mode", "policy", "beta", "on_frame", "on_episode", "arms",
+                   "repair")  # fmt: skip
 
 
 def record(
-    out: str | Path,
     name: str = "pyramid-even",
-    *,
+    *old_order: Any,
+    out: str | Path | None = None,
     arms: ArmChoice = "both",
     episodes: int = 1,
     seed: int = 0,
@@ -198,41 +182,50 @@ def record(
     beta: float = 0.5,
     on_frame: Any = None,
     on_episode: Any = None,
+    repair: bool = False,
     config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
-    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in `out`:
-    `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras` at
-    `image_size` (height, width), each episode drawn from its seed at `variation` (fixed,
-    layout or full: learning/task/variation.py) with its `randomize` parts; `workers` at once, in
-    processes or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray
-    started here). With `noise` (rad on each joint in the joint and relative modes, m on each
-    hand's x, y and z in the waypoint and anchored modes), what is executed is the expert's
-    action plus an offset drawn each second, the label the expert's, planned from where the
-    arm is (DART); a build that succeeds goes on `linger` s more. `action_mode` relative writes each joint's
-    action as its change from the frame's state. With `policy` (as `evaluate` takes one: a
-    lerobot checkpoint folder, zero, random, module:factory), a DAgger round: the policy
-    drives each 2 s span the expert does not (the expert drives a share `beta` of them) and
-    every frame is labelled by the expert; such rounds may add episodes to one dataset.
-    Episodes already in `out` are kept.
-    `on_frame(episode, its frames so far)` hears each frame (with workers, an episode's all at
-    once), `on_episode(episodes in the dataset)` the count before the first is filmed and after
-    each lands. `options` as for `build`."""
+    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in the folder
+    `out`: `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras`
+    at `image_size` (height, width), each drawn from its seed at `variation` (fixed, layout or
+    full) with its `randomize` parts; `workers` at once, in processes or as Ray tasks
+    (`backend="ray"`, on the cluster at `ray_address` or a Ray started here). With `noise`
+    (rad on each joint in the joint and relative modes, m on each hand's x, y and z in the
+    waypoint and anchored modes), what is executed is the expert's action plus an offset drawn
+    each second, the label the expert's (DART); a build that succeeds goes on `linger` s more.
+    With `policy` (as `evaluate` takes one), a DAgger round: the policy drives each 2 s span
+    the expert does not (the expert a share `beta` of them), the expert labelling every frame;
+    rounds may add episodes to one dataset. Episodes already in `out` are kept; a folder
+    holding anything else is refused, and so is an episode whose files are damaged, unless
+    `repair` records it again. `on_frame(episode, its frames so far)` hears each frame (with
+    workers, an episode's all at once), `on_episode(episodes in the dataset)` the count before
+    the first is filmed and after each lands. `options` as for `build`."""
+    if old_order or out is None:
+        raise ConfigError(
+            "out: record takes the structure first and the dataset's folder as out=, as "
+            "build, plan and evaluate take the structure first; accepted "
+            "record('pyramid-even', out='runs/dataset', ...), not record(folder, structure)"
+        )
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
+    for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
+        callback_argument(hook, what)
+    folder = written.out_folder(out)
+    assert folder is not None
     from .learning.recording.record import RecordConfig
     from .learning.recording.record import record as run
 
     sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
-    size: Any = tuple(image_size)  # checked by RecordConfig
     settings_ = RecordConfig(
-        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, tuple(cameras),
-        size, variation, tuple(randomize), True, workers, backend, ray_address, noise,
+        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, cameras,
+        image_size, variation, randomize, True, workers, backend, ray_address, noise,
         action_mode, linger, policy, beta,
     )  # fmt: skip
-    _prepare_gl(render=bool(cameras))
+    _prepare_gl(render=bool(settings_.cameras))
     from .learning.evaluation.policies import make_policy
 
-    return run(Path(out), settings_, on_frame, on_episode, make_policy)
+    with written.held([(folder, "out")]):
+        return run(folder, settings_, on_frame, on_episode, make_policy, repair=bool(repair))
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
@@ -264,24 +257,28 @@ def evaluate(
     on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
     recordings, which start at 0) at `variation` and `fps`; with `out`, write
     `out/evaluation.json` and film the first `video` episodes, the policy acting in
-    `action_mode` (one of `choices.ACTION_MODES`). A checkpoint is evaluated as it was trained:
-    its cameras, and the robot, structure, size, variation, fps and action mode its training
-    saw where not given (a given one that contradicts it is refused, but the variation);
-    otherwise pyramid-even, layout, 25 and joint. `workers` episodes run at once, in processes
-    or as Ray tasks (`backend="ray"`, on the cluster at `ray_address` or a Ray started here),
-    scoring as one worker does. `options` as for `build`. Returns the `Evaluation` (its scores
-    as evaluation.json has them)."""
+    `action_mode`. A checkpoint is evaluated as it was trained: its cameras, and the robot,
+    structure, size, variation, fps and action mode its training saw where not given (a given
+    one that contradicts it is refused, but the variation); otherwise pyramid-even, layout, 25
+    and joint. `workers` episodes run at once, in processes or as Ray tasks (`backend="ray"`,
+    at `ray_address` or a Ray started here), scoring as one worker does. `options` as for
+    `build`. Returns the `Evaluation` (its scores as evaluation.json has them)."""
+    from .learning.evaluation.policies import check_spec
     from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
 
+    callback_argument(on_episode, "on_episode")
+    folder = written.out_folder(out)
+    policy = check_spec(policy)
     options = dict(options)
     sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
-    robot = config.robot if config is not None else options.get("robot")
+    robot = config.robot if isinstance(config, SimConfig) else options.get("robot")
     task = checkpoint_task(policy, Task(robot, name, sizes, variation, fps, action_mode))
     assert task.structure is not None and task.variation is not None and task.fps is not None
     if config is None:
         options["robot"] = task.robot
     config, spec = resolve(task.structure, config, {**options, **task.size}, own=EVALUATE_KEYWORDS)
     from .learning.evaluation.config import EvaluateConfig  # MuJoCo: once the task is settled
+    from .learning.evaluation.evaluate import evaluate as run
 
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
     wanted = EvaluateConfig(
@@ -289,9 +286,10 @@ def evaluate(
         task.variation, task.fps, episodes, seed, video, max_steps, task.action_mode or "joint",
         workers, backend, ray_address,
     )  # fmt: skip
-    if video and out is None:
+    if video and folder is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
     _prepare_gl(render=bool(video or views))
-    from .learning.evaluation.evaluate import evaluate as run
-
-    return run(wanted, Path(out) if out is not None else None, on_episode)
+    if folder is None:
+        return run(wanted, None, on_episode)
+    with written.held([(folder, "out")]):
+        return run(wanted, folder, on_episode)

@@ -3,6 +3,9 @@ so both read keywords the same way without importing each other."""
 
 from __future__ import annotations
 
+import numbers
+import os
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -20,6 +23,11 @@ def settings(config: SimConfig | None = None, **values: Any) -> SimConfig:
     named settings applied; ConfigError for a name that is not a setting, listing those that
     are."""
     _refuse_unknown(values, ())
+    values = plain_numbers(values)
+    if config is not None and not isinstance(config, SimConfig):
+        raise ConfigError(
+            f"config: {config!r} is not a SimConfig; accepted pyramid_sim.SimConfig(...) or None"
+        )
     if config is None:
         config = SimConfig.for_robot(values.get("robot", SimConfig().robot))
     for name, value in values.items():
@@ -57,20 +65,19 @@ def structure(
     """A structure at a size (a goals file for `list`); the options left out take the
     structure's defaults."""
     targets = None
-    if goals is not None:
+    goals_path = path_argument(goals, "goals", "a JSON or CSV file's path")
+    if goals_path is not None:
         from .core.goals import load_goals
 
         config = config or SimConfig()
         table_z = config.layout.table_top_z + config.brick.height / 2
-        targets = load_goals(Path(goals), config.brick, table_z)
+        targets = load_goals(goals_path, config.brick, table_z)
+    sizes = plain_numbers({"layers": layers, "bricks": bricks, "width": width, "towers": towers})
     return StructureSpec(
         name,
-        layers=layers,
-        bricks=bricks,
-        width=width,
-        towers=towers,
+        **sizes,
         goals=targets,
-        goals_source=Path(goals).name if goals is not None else "",
+        goals_source=goals_path.name if goals_path is not None else "",
     )
 
 
@@ -85,3 +92,53 @@ def resolve(
     sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
     config = settings(config, **options)
     return config, structure(name, config=config, **sizes)
+
+
+def plain_numbers(values: dict[str, Any]) -> dict[str, Any]:
+    """`values` with numpy's numbers (np.int64(2), np.float32(0.5)) as Python's own, which the
+    settings check and JSON writes: numpy numbers are numbers (a numpy bool stays refused)."""
+    return {k: _plain(v) for k, v in values.items()}
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, numbers.Number) and type(value).__module__ == "numpy":
+        return value.item()  # type: ignore[attr-defined]
+    return value
+
+
+def path_argument(value: Any, what: str, accepted: str) -> Path | None:
+    """`value` as a Path (None stays None); ConfigError for what is not a path's text or a
+    path object (bytes, a number), naming `what` and `accepted`."""
+    if value is None:
+        return None
+    if isinstance(value, (str, os.PathLike)) and not isinstance(os.fspath(value), bytes):
+        return Path(value)
+    raise ConfigError(f"{what}: {value!r} is not a path; accepted {accepted}, as a str or Path")
+
+
+def callback_argument(value: Any, what: str) -> Callable[..., Any] | None:
+    """`value` if it can be called (or None); ConfigError naming `what` otherwise, before a
+    run that would call it halfway."""
+    if value is None or callable(value):
+        return value
+    raise ConfigError(f"{what}: {value!r} cannot be called; accepted a function, or None")
+
+
+def names_argument(value: Any, what: str, accepted: str) -> tuple[str, ...]:
+    """`value` as a tuple of names; ConfigError for one name alone (a str reads as its
+    letters) and for what is not a sequence of str."""
+    if isinstance(value, str):
+        raise ConfigError(
+            f"{what}: {value!r} is one name, not a sequence of them; accepted a tuple of {accepted}"
+        )
+    try:
+        names = tuple(value)
+    except TypeError:
+        raise ConfigError(
+            f"{what}: {value!r} is not a sequence; accepted a tuple of {accepted}"
+        ) from None
+    if not all(isinstance(n, str) for n in names):
+        raise ConfigError(
+            f"{what}: {value!r} holds other than names; accepted a tuple of {accepted}"
+        )
+    return names

@@ -162,11 +162,11 @@ class Bound:
 
     def check_whole(self, value: Any) -> None:
         """ConfigError unless `value` is a whole number within the range."""
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int)
-            or not (self.low <= value <= self.high)
-        ):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ConfigError(
+                f"{self.name}: {value!r} is not a whole number; accepted {self.whole_text}"
+            )
+        if not self.low <= value <= self.high:
             raise ConfigError(f"{self.name}: {value!r} is out of range; accepted {self.whole_text}")
 
 

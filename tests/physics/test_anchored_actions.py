@@ -74,7 +74,7 @@ def test_darts_noise_on_anchored_actions_moves_the_offsets_only():
 def test_an_anchored_recording_names_its_actions_and_replays_into_its_build(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
-        root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="anchored",
+        "pyramid-even", out=root, layers=1, episodes=1, cameras=(), action_mode="anchored",
         variation="layout",
     )  # fmt: skip
     assert recorded.failed == ()

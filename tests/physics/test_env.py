@@ -121,7 +121,8 @@ def test_the_structures_place_and_the_feed_spot_vary_by_centimetres_across_seeds
 @pytest.mark.parametrize("structure", [("pyramid-even", 1), ("pyramid", 3)])
 def test_the_expert_builds_at_every_level_over_twenty_seeds(variation, structure):
     """The 2-brick and the 6-brick pyramids, 20 seeds each, at the dataset's rate (the
-    6-brick one through the motion generator since the twist damping: docs/learning.md)."""
+    6-brick one through the motion generator since the twist damping:
+    docs/notes/2026-11-28-learning.md)."""
     name, layers = structure
     env = gymnasium.make(ENV, structure=name, layers=layers, variation=variation)
     failed = []
@@ -290,32 +291,73 @@ def test_end_effector_actions_go_through_the_builds_own_ik():
         gymnasium.make(ENV, structure="pyramid", layers=1, action_mode="torque")
 
 
-@pytest.mark.parametrize("fault", ["contact", "speed", "torque", "off_table"])
-def test_each_episode_failure_fires_and_is_named(fault):
-    """What ends an episode though a build would go on: each one, made to happen."""
-    from pyramid_sim.learning.task.outcome import episode_failure
+def _joint_targets_at_the_spot(env) -> np.ndarray:
+    """Both arms' joint targets with each hand over the spawn spot at once: where the
+    lockstep never lets them be together (each solved alone, the other arm away)."""
+    from pyramid_sim.core.poses import Pose
+    from pyramid_sim.physics.reach import ReachChecker
 
-    env = gymnasium.make(ENV, structure="pyramid", layers=1).unwrapped
+    checker = ReachChecker(env.loop.config)
+    spot, robot = env.plan.spawn, env.loop.config.robot_description
+    action = env.held_command().astype(np.float64)
+    for arm in ("left", "right"):
+        hover = Pose(spot.x, spot.y, spot.z + 0.15, robot.arms[arm].yaw_reference)
+        q = checker.posture(arm, hover)[checker.ik.qadr[arm]]
+        for k, joint in enumerate(robot.arms[arm].joints):
+            action[env.layout.names.index(f"{arm}/{joint.split('/')[-1]}")] = q[k]
+    return action.astype(np.float32)
+
+
+def _run_until_it_ends(env, action, steps: int = 200) -> dict:
+    for _ in range(steps):
+        _, _, terminated, truncated, info = env.step(action)
+        if terminated or truncated:
+            return info
+    raise AssertionError("the episode did not end")
+
+
+@pytest.mark.parametrize("fault", ["contact", "speed", "torque", "off_table"])
+def test_each_episode_failure_ends_a_real_episode_and_is_named(fault):
+    """What ends an episode though a build would go on, each made to happen in the physics,
+    never by setting a meter: both hands sent to the spawn spot at once (the arms meet), a
+    wild joint target on the raw command path (the wrist whips past its speed), the left hand
+    pressed down with 120 N (its wrist demands more torque than it has), a brick knocked to
+    the floor. Each meter reads past its limit, and the others stay within theirs."""
+    env = gymnasium.make(ENV, structure="pyramid", layers=1, limit_commands=fault != "speed")
+    env = env.unwrapped
     env.reset(seed=0)
     loop = env.loop
-    assert episode_failure(loop, reduce=True) is None
+    action = env.held_command()
     if fault == "contact":
-        loop.monitor.arm_arm_contacts = 1
+        action = _joint_targets_at_the_spot(env)
     elif fault == "speed":
-        loop.monitor.speed_ratio = 1.2
+        action = action.copy()
+        action[env.layout.names.index("left/panda_joint7")] += 2.0  # a step of 2 rad at once
     elif fault == "torque":
-        loop.monitor.torque_ratio = 1.3
+        hand = loop.model.site(loop.config.robot_description.arms["left"].tcp_site).bodyid
+        loop.data.xfrc_applied[hand, 2] = -120.0
     else:
         loop.custody.feed_spot()  # a brick on the spot, then knocked to the floor
         q = loop.handles.brick_qpos[0]
         loop.data.qpos[q + 2] = -0.5
+    info = _run_until_it_ends(env, action)
+    monitor = loop.monitor
     words = {
-        "contact": "arm-arm contact",
-        "speed": "1.20 of its velocity limit",
-        "torque": "1.30 of its torque limit",
+        "contact": "arm-arm contact at t = ",
+        "speed": "a joint moved at ",
+        "torque": "a joint demanded ",
         "off_table": "slot 0) left the table",
     }
-    assert words[fault] in episode_failure(loop, reduce=False)
+    assert info["failure"].startswith(words[fault]) or words[fault] in info["failure"]
+    assert not info["is_success"]
+    if fault == "contact":
+        assert monitor.arm_arm_contacts > 0 and monitor.speed_ratio < 1.0
+    elif fault == "speed":
+        assert monitor.speed_ratio > 1.0 and monitor.arm_arm_contacts == 0
+        assert f"{monitor.speed_ratio:.2f} of its velocity limit" in info["failure"]
+    elif fault == "torque":
+        assert monitor.torque_ratio > 1.0 and monitor.speed_ratio < 1.0
+        assert f"{monitor.torque_ratio:.2f} of its torque limit" in info["failure"]
     env.close()
 
 

@@ -16,6 +16,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
+from pyramid_sim.cli import main
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 TASK = {"layers": 1}  # the smallest task: two bricks, one per arm
@@ -89,7 +90,7 @@ def test_the_first_episodes_are_filmed_a_frame_a_step(tmp_path):
         (["--episodes", "2", "--video", "3"], "video: 3 episodes filmed; accepted 0 to the 2"),
         (["--fps", "30"], "fps: 30; accepted 10, 20, 25, 50, 100"),
         (["--variation", "wild"], "invalid choice: 'wild'"),
-        (["--max-steps", "0"], "max steps: 0; accepted 1 to 10000000"),
+        (["--max-steps", "0"], "max steps: 0 is out of range; accepted 1 to 10000000"),
     ],
 )
 def test_bad_evaluate_input_is_refused_in_one_line_writing_nothing(argv, words, refused, tmp_path):
@@ -175,6 +176,69 @@ def test_a_users_policy_that_fails_is_named_in_one_line_with_its_episode(
     assert line.startswith(f"pyramid-sim: error: {words}") and not out.exists()
 
 
+USER_MODULES = {
+    "syntax_error_policy": "def f(:\n",
+    "raising_policy": "1 / 0\n",
+    "exiting_policy": "import sys\n\n\ndef factory(env):\n    sys.exit(3)\n",
+}
+
+
+@pytest.mark.parametrize(
+    "spec, words",
+    [
+        (
+            "syntax_error_policy:f",
+            "policy: 'syntax_error_policy:f' cannot be loaded: importing 'syntax_error_policy' "
+            "raised SyntaxError: invalid syntax (syntax_error_policy.py, line 1); accepted "
+            "module:factory, a module that imports",
+        ),
+        (
+            "raising_policy:f",
+            "policy: 'raising_policy:f' cannot be loaded: importing 'raising_policy' raised "
+            "ZeroDivisionError: division by zero",
+        ),
+        (
+            "exiting_policy:factory",
+            "policy: 'exiting_policy:factory' failed to make its policy (SystemExit: 3); "
+            "accepted a factory that returns a policy",
+        ),
+        ("", "policy: '' is not one; accepted expert, zero, random, module:factory, or a "),
+    ],
+)
+def test_a_users_module_that_fails_or_exits_is_one_line_from_the_current_folder(
+    spec, words, refused, tmp_path, monkeypatch
+):
+    """A module in the current folder is found (as `python -m` finds one); one that does not
+    import, or whose factory exits, is refused in one line with exit 2 (a traceback and exit
+    1 before, or a silent exit 3), and an empty policy is not taken for the current folder."""
+    for name, text in USER_MODULES.items():
+        (tmp_path / f"{name}.py").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", list(sys.path))  # the command adds the folder: undone
+    line = refused(
+        ["evaluate", "--policy", spec, "--structure", "pyramid-even", "--layers", "1",
+         "--episodes", "1", "--max-steps", "5", "--quiet", "--out", "run"]
+    )  # fmt: skip
+    assert line.startswith(f"pyramid-sim: error: {words}") and not (tmp_path / "run").exists()
+
+
+def test_a_policy_module_in_the_current_folder_is_found(tmp_path, monkeypatch, capsys):
+    (tmp_path / "still_policy_here.py").write_text(
+        "def factory(env):\n    return lambda observation: env.unwrapped.held_command()\n"
+    )
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    monkeypatch.delitem(sys.modules, "still_policy_here", raising=False)
+    code = main(
+        ["evaluate", "--policy", "still_policy_here:factory", "--structure", "pyramid-even",
+         "--layers", "1", "--episodes", "1", "--max-steps", "5", "--quiet", "--out", "run"]
+    )  # fmt: skip
+    assert code == 0, capsys.readouterr().err
+    doc = json.loads((tmp_path / "run/evaluation.json").read_text())
+    assert doc["rows"][0]["steps"] == 5 and doc["failures"] == {"step limit": 1}
+    sys.modules.pop("still_policy_here", None)
+
+
 def test_a_checkpoint_folder_needs_lerobot_and_says_so(refused, tmp_path, monkeypatch):
     """lerobot is never a dependency: where it is missing (made so here, if it is installed),
     a checkpoint is refused in a line saying what to install (.ci/run drives a real one with
@@ -233,7 +297,7 @@ def test_lerobots_view_of_the_environment_matches_a_recorded_dataset(tmp_path):
     observation.images.<camera>, at the same shapes, and the task's text."""
     root = tmp_path / "d"
     pyramid_sim.record(
-        root, "pyramid-even", episodes=1, cameras=("overview",), image_size=(32, 48), **TASK
+        "pyramid-even", out=root, episodes=1, cameras=("overview",), image_size=(32, 48), **TASK
     )
     info = json.loads((root / "meta/info.json").read_text())
     env = gymnasium.make(
@@ -349,3 +413,34 @@ def test_episodes_as_ray_tasks_score_as_one_worker_does(tmp_path):
             del row["wall_time_s"]
     assert ray["rows"] == one["rows"] and ray["successes"] == one["successes"]
     assert ray["inputs"]["backend"] == "ray"
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        ({"policy": None}, "policy: None is not one; accepted expert, zero, random"),
+        ({"policy": object()}, "policy: <object object at"),
+        ({"out": "afile"}, "out: 'afile' is not a folder; accepted a folder"),
+        ({"out": 5}, "out: 5 is not a path; accepted a folder's path"),
+        ({"max_steps": 1.5}, "max steps: 1.5 is not a whole number; accepted 1 to 10000000"),
+        ({"on_episode": "print"}, "on_episode: 'print' cannot be called"),
+    ],
+)
+def test_the_evaluate_api_refuses_as_the_command_line_does(kwargs, words, tmp_path, monkeypatch):
+    """They were AttributeError, FileExistsError, or Gymnasium's TimeLimit failing on 1.5
+    steps: one ConfigError naming the argument and what it takes, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "afile").write_text("mine")
+    policy = kwargs.pop("policy", "expert")
+    with pytest.raises(pyramid_sim.ConfigError) as refused:
+        pyramid_sim.evaluate(policy, "pyramid-even", episodes=1, **TASK, **kwargs)
+    assert words in str(refused.value)
+    assert [p.name for p in tmp_path.iterdir()] == ["afile"]
+    assert (tmp_path / "afile").read_text() == "mine"
+
+
+def test_numpy_numbers_evaluate_as_python_numbers():
+    evaluation = pyramid_sim.evaluate(
+        "zero", "pyramid-even", layers=np.int64(1), episodes=np.int64(1), max_steps=np.int64(3)
+    )
+    assert evaluation.scores["rows"][0]["steps"] == 3 and evaluation.scores["episodes"] == 1

@@ -19,7 +19,8 @@ def _joints(env) -> np.ndarray:
 
 
 def test_a_chunked_gait_on_the_expert_still_builds():
-    """Each action held 5 steps, then a jump (docs/learning.md has the 20-seed table)."""
+    """Each action held 5 steps, then a jump (docs/notes/2026-11-28-learning.md has the 20-seed
+    table)."""
     env = gymnasium.make(ENV, **TASK).unwrapped
     for seed in (100_000, 100_001):
         env.reset(seed=seed)
@@ -45,7 +46,8 @@ def _noisy_episode(env, seed: int) -> dict:
 
 
 def test_white_noise_on_the_joint_targets_still_builds():
-    """Both seeds failed before the joint modes' filtering (docs/learning.md has the table):
+    """Both seeds failed before the joint modes' filtering (docs/notes/2026-11-28-learning.md has
+    the table):
     one set its brick 5.1 mm off, the other asked a shoulder for 1.03 of its torque."""
     env = gymnasium.make(ENV, **TASK).unwrapped
     for seed in (100_004, 100_010):

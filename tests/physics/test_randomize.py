@@ -31,6 +31,32 @@ def test_the_draw_is_the_seeds_and_each_part_its_own():
         rnd.check_parts(("gravity",))
 
 
+@pytest.mark.parametrize(
+    "parts, words",
+    [
+        (("all", "friction"), "randomize: 'all' stands alone, not beside 'friction'; accepted "
+         "all, none, or some of friction, brick_mass"),
+        (("friction", "none"), "randomize: 'none' stands alone, not beside 'friction'"),
+        (("friction", "friction"), "randomize: friction, friction names one twice; accepted "
+         "each once"),
+        ("friction", "randomize: 'friction' is one name, not a sequence of them"),
+    ],
+)  # fmt: skip
+def test_the_parts_read_as_the_help_says_them(parts, words):
+    """`all` and `none` each alone (--help's default is none), a part once, as the cameras;
+    `all` beside another part was refused as "unknown 'all'" while the list named it."""
+    assert rnd.check_parts(("all",)) == rnd.PARTS and rnd.check_parts(("none",)) == ()
+    with pytest.raises(pyramid_sim.ConfigError) as refused:
+        rnd.check_parts(parts)
+    assert words in str(refused.value)
+
+
+def test_a_recording_of_no_parts_is_the_same_whether_said_none_or_left_out():
+    from pyramid_sim.learning.recording.record_config import RecordConfig
+
+    assert RecordConfig(randomize=("none",)) == RecordConfig()  # one recording, resumable
+
+
 def test_each_physical_part_reaches_the_compiled_model():
     env = _env(rnd.PHYSICAL)
     _, info = env.reset(seed=5)

@@ -81,7 +81,7 @@ def test_the_expert_builds_in_relative_mode():
 def test_a_relative_recording_replays_into_its_build_and_keeps_its_mode(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
-        root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="relative"
+        "pyramid-even", out=root, layers=1, episodes=1, cameras=(), action_mode="relative"
     )
     assert recorded.failed == ()
     doc = json.loads((root / "meta/pyramid_sim/dataset.json").read_text())
@@ -95,7 +95,7 @@ def test_a_relative_recording_replays_into_its_build_and_keeps_its_mode(tmp_path
     terminated, info = replay(env, actions)
     assert terminated and info["is_success"]
     with pytest.raises(pyramid_sim.ConfigError, match='action_mode "relative", this run "joint"'):
-        pyramid_sim.record(root, "pyramid-even", layers=1, episodes=2, cameras=())
+        pyramid_sim.record("pyramid-even", out=root, layers=1, episodes=2, cameras=())
 
 
 def test_evaluate_scores_a_policy_in_its_action_mode(tmp_path):
@@ -108,7 +108,9 @@ def test_evaluate_scores_a_policy_in_its_action_mode(tmp_path):
     with pytest.raises(
         pyramid_sim.ConfigError, match="accepted joint, relative, waypoint or anchored"
     ):
-        pyramid_sim.record(tmp_path / "r", "pyramid-even", layers=1, cameras=(), action_mode="ee")
+        pyramid_sim.record(
+            "pyramid-even", out=tmp_path / "r", layers=1, cameras=(), action_mode="ee"
+        )
     assert not (tmp_path / "r").exists()
 
 

@@ -11,6 +11,7 @@ from pyramid_sim.cli import main
 from pyramid_sim.config import SimConfig
 from pyramid_sim.core.structures import StructureSpec
 from pyramid_sim.output.judge import judge
+from pyramid_sim.params import BY_NAME
 from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.loop import BuildLoop
 from pyramid_sim.physics.reach import prepare
@@ -70,6 +71,38 @@ def test_a_brick_knocked_off_the_structure_is_reported(teleport):
     assert knock_event["brick"] == 0 and knock_event["moved_mm"] > 500
     assert doc["bricks"][0]["knocked_off"] and not doc["bricks"][0]["placed"]
     assert doc["bricks"][1]["placed"]
+
+
+@pytest.mark.parametrize("push_n, slid", [(0.0, False), (15.0, True)])
+def test_a_brick_pushed_along_a_greased_grip_slides_and_the_build_fails_on_slip(push_n, slid):
+    """The slip meter, read in a real build: the pads greased (friction 0.3: the grip holds
+    2 x 20 N x 0.3 = 12 N along the brick), the left hand's brick is pushed along its length
+    for 50 ms as it is carried out to the clear pose. Unpushed it sits 1-2 mm into the grip
+    (never 0: the meter reads); pushed with 15 N it slides 10-20 mm and holds there, and the
+    judge fails the build on `slip`, naming how far (12 N: 4 mm, 13-17 N: 7-23 mm, 20 N drops
+    it)."""
+    config = BY_NAME["pad_friction"].apply(SimConfig(), 0.3)
+    loop = _two_brick_build(config)
+    pushed: dict = {}
+
+    def push(data):
+        carry, step = loop.custody.carry["left"], loop.step_of("left")
+        if not pushed and carry is not None and step is not None and step.name == "clear":
+            pushed.update(t0=data.time, body=loop.handles.brick_body[carry.slot])
+        if pushed:
+            tool_x = data.site_xmat[loop.handles.tcp_site["left"]].reshape(3, 3)[:, 0]
+            on = data.time - pushed["t0"] < 0.05
+            data.xfrc_applied[pushed["body"], :3] = push_n * tool_x if on else 0.0
+
+    doc = _run(loop, push)
+    assert pushed and doc["drops"] == 0
+    slip = doc["max_slip_mm"]
+    if not slid:
+        assert doc["success"], doc["failure_reason"]
+        assert 0.5 < slip < 5.0 and doc["checks"]["slip"]
+        return
+    assert 5.0 < slip < 30.0 and "slip" in doc["failed_checks"]
+    assert f"a brick slid {slip:.1f} mm in the hand, over the 5 mm limit" in doc["failure_reason"]
 
 
 def test_a_brick_too_heavy_for_the_grip_ends_with_which_brick_where_and_why(tmp_path, capsys):

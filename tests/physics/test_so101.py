@@ -99,9 +99,8 @@ def test_without_its_aim_past_the_sag_the_arm_stops_short_of_a_target():
 
 def test_a_recording_names_and_scales_its_features_as_lerobots_bimanual_so_follower(tmp_path):
     recorded = pyramid_sim.record(
-        tmp_path / "d", "pyramid", layers=1, episodes=1, robot="so101", cameras=(),
-        image_size=(32, 32),
-    )  # fmt: skip
+        "pyramid", out=tmp_path / "d", layers=1, episodes=1, robot="so101", cameras=()
+    )
     assert recorded.failed == ()
     info = json.loads((tmp_path / "d/meta/info.json").read_text())
     assert info["robot_type"] == "bi_so_follower"

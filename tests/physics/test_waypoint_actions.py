@@ -88,6 +88,40 @@ def test_a_far_waypoint_moves_the_target_no_faster_than_the_hand_moves():
     env.close()
 
 
+@pytest.mark.parametrize("robot", ["panda", "baxter"])
+def test_baxters_waypoint_gains_and_sheds_its_speed_gently_the_pandas_at_once(robot):
+    """Baxter's shoulder has too little torque to spare for the Panda's step starts and stops
+    (docs/notes/2026-11-28-baxter-holding.md): its target's speed changes by at
+    most its hand acceleration a control step, and its motion generator accelerates the
+    joints at a quarter of their limits; the Panda's target is at full speed in the first
+    step, its generator at half."""
+    from pyramid_sim.physics.motion_generator import ACCELERATION_SHARE
+
+    env = _env(robot=robot)
+    env.reset(seed=0)
+    hand, robot_description = env.ee, env.loop.config.robot_description
+    action = hand.hold(env.loop).astype(np.float32)
+    action[1] -= 0.2  # left hand 20 cm towards the middle
+    positions = [hand.ee.targets["left"].position]
+    for _ in range(15):
+        env.step(action)
+        positions.append(hand.ee.targets["left"].position)
+    speeds = np.linalg.norm(np.diff(positions, axis=0), axis=1) / (hand.dt * env.control_steps)
+    joints = env.generator.limits.acceleration[~env.generator.limits.fingers]
+    limits = np.concatenate([a.acceleration_limits for a in robot_description.arms.values()])
+    if robot == "panda":
+        assert speeds[0] > 0.5 * hand.speed  # (the leash may hold it back a little)
+        assert joints == pytest.approx(ACCELERATION_SHARE * limits)
+        return
+    gained = hand.acceleration * hand.dt * env.control_steps  # the most an env step adds
+    assert speeds[0] <= gained + 1e-9 and np.all(np.diff(speeds) <= gained + 1e-9)
+    assert speeds.max() > 0.8 * hand.speed  # and it does get up to speed
+    assert joints == pytest.approx(0.25 * limits)
+    env.loop.monitor.flush()
+    assert env.loop.monitor.torque_ratio < 1.0
+    env.close()
+
+
 def test_a_jittering_waypoint_is_smoothed_and_still_builds():
     """2 mm of white noise on each hand's waypoint every step, as a learner's errors: the lag
     at a move's end and the generator keep the brick in the fingers."""
@@ -142,7 +176,7 @@ def test_darts_noise_on_waypoints_moves_the_hands_positions_only():
 def test_a_waypoint_recording_names_its_actions_and_replays_into_its_build(tmp_path, replay):
     root = tmp_path / "d"
     recorded = pyramid_sim.record(
-        root, "pyramid-even", layers=1, episodes=1, cameras=(), action_mode="waypoint",
+        "pyramid-even", out=root, layers=1, episodes=1, cameras=(), action_mode="waypoint",
         variation="layout",
     )  # fmt: skip
     assert recorded.failed == ()

@@ -157,7 +157,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     if broken:
         print(
             f"sweep incomplete: {len(broken)} of {len(rows)} runs crashed or timed out, so "
-            "their points measure nothing (see failure_reason in sweep.csv)",
+            "their points measure nothing (see failure_reason in sweep.csv); the same command "
+            "with --retry-failed (and a larger --timeout) runs them again",
             file=sys.stderr,
         )
     return 0 if len(rows) == runs and not broken else EXIT_FAILED
@@ -179,7 +180,8 @@ def cmd_scene(args: argparse.Namespace) -> int:
     from ..physics.reach import prepare
 
     plan = prepare(spec, config, args.arms)  # out of reach: refused, as `plan` refuses it
-    with removed_if_failed([args.out.parent]):
+    # Held as every command holds what it writes: not into a folder a build is writing.
+    with removed_if_failed([args.out.parent]), holding([(args.out.parent, "out")]):
         model, written = write_scene(config, len(plan.bricks) + config.spare_bricks, args.out)
     files = [str(args.out)] + [f"{p}/ ({len(list(p.iterdir()))} mesh files)" for p in written[1:]]
     print(

@@ -6,8 +6,6 @@ import argparse
 from pathlib import Path
 
 from ..choices import ACTION_MODES, EVAL_FIRST_SEED
-from ..output.files import removed_if_failed
-from ..output.lock import holding
 from ..params import MAX_STEPS, WORKERS
 from .args import (
     SIZE_FLAGS,
@@ -16,6 +14,7 @@ from .args import (
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
+    policies_from_here,
     size_options,
     whole,
 )
@@ -28,10 +27,10 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
         "--policy",
         default="expert",
         metavar="POLICY",
-        help="expert, zero (hold still), random, module:factory (called with the environment), "
-        "or a lerobot checkpoint folder (where lerobot is installed), evaluated on the robot, "
-        "structure, size, variation, fps and action mode it was trained on unless given "
-        "(default expert)",
+        help="expert, zero (hold still), random, module:factory (called with the environment; "
+        "the current folder is on the import path, as with python -m), or a lerobot "
+        "checkpoint folder (where lerobot is installed), evaluated on the robot, structure, "
+        "size, variation, fps and action mode it was trained on unless given (default expert)",
     )
     add_structure_args(p)
     add_physics_args(
@@ -74,11 +73,9 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
 
     args = as_trained(args)
     config, spec, sizes = episode_inputs(args, "evaluated")
-    with (
-        removed_if_failed([args.out]),
-        holding([(args.out, "out")]),
-        Progress("episodes", args.episodes, "episode", quiet=args.quiet) as progress,
-    ):
+    policies_from_here()
+    # the library holds --out, and removes it if it made it and fails
+    with Progress("episodes", args.episodes, "episode", quiet=args.quiet) as progress:
         progress.start()
         evaluation = pyramid_sim.evaluate(
             args.policy,

@@ -5,9 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_LINGER
-from ..output.files import removed_if_failed
-from ..output.lock import holding
+from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_IMAGE_SIZE, RECORD_LINGER
+from ..errors import ConfigError
 from ..params import BETA, LINGER, NOISE, WORKERS
 from .args import (
     add_backend_args,
@@ -17,6 +16,7 @@ from .args import (
     add_structure_args,
     bounded,
     image_size,
+    policies_from_here,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
@@ -44,18 +44,24 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--image-size",
         type=image_size,
-        default=(224, 224),
+        default=None,
         metavar="H[xW]",
-        help="each camera's pixels, even (default 224)",
+        help="each camera's pixels, even; not with --cameras none (default 224)",
     )
     p.add_argument(
         "--randomize",
         default="",
         metavar="A,B,...",
-        help="parts drawn per episode from its seed: all, or friction, brick_mass, "
-        "grip_force, pad_friction, spawn_jitter, brick_size, light, colours, textures, "
-        "camera (default none)",
+        help="parts drawn per episode from its seed: all, none, or some of friction, "
+        "brick_mass, grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
+        "textures, camera, each once (default none)",
     )
+    _add_run_args(p)
+
+
+def _add_run_args(p: argparse.ArgumentParser) -> None:
+    """How the episodes are run: workers, DART's noise, the linger after a success, the
+    repair of damaged episodes, the backend and the folder."""
     p.add_argument(
         "--workers",
         type=whole("workers", WORKERS.whole_text),
@@ -78,6 +84,12 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
         metavar="SECONDS",
         help="seconds an episode that built goes on being filmed: the last release and the "
         f"hands leaving, taught as the first; {LINGER.text} (default {RECORD_LINGER:g})",
+    )
+    p.add_argument(
+        "--repair",
+        action="store_true",
+        help="record again the episodes of DIR whose files are damaged (cut short, or not "
+        "the frames their records claim) (default: refuse to resume over them)",
     )
     _add_dagger_args(p)
     add_backend_args(p, "episodes")
@@ -110,14 +122,13 @@ def cmd_record(args: argparse.Namespace) -> int:
     import pyramid_sim
 
     config, spec, sizes = episode_inputs(args, "recorded")
-    cameras = () if args.cameras.strip() == "none" else _names(args.cameras)
-    with (
-        removed_if_failed([args.out]),
-        holding([(args.out, "out")]),
-        Progress(
-            "episodes", args.episodes, "episode", quiet=args.quiet, count_unit="frame"
-        ) as progress,
-    ):
+    cameras = _cameras(args.cameras, args.image_size)
+    if args.policy is not None:  # a DAgger round's learner, found as evaluate finds one
+        policies_from_here()
+    # the library holds --out, and removes it if it made it and fails
+    with Progress(
+        "episodes", args.episodes, "episode", quiet=args.quiet, count_unit="frame"
+    ) as progress:
         filmed: dict[int, int] = {}
 
         def on_frame(episode: int, frames: int) -> None:
@@ -129,14 +140,14 @@ def cmd_record(args: argparse.Namespace) -> int:
             progress.advance_to(episodes)
 
         recorded = pyramid_sim.record(
-            args.out,
             spec.name,
+            out=args.out,
             arms=args.arms,
             episodes=args.episodes,
             seed=config.seed,
             fps=args.fps,
             cameras=cameras,
-            image_size=args.image_size,
+            image_size=args.image_size or RECORD_IMAGE_SIZE,
             on_frame=on_frame,
             on_episode=on_episode,
             variation=args.variation,
@@ -149,6 +160,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             action_mode=args.action_mode,
             policy=args.policy,
             beta=args.beta,
+            repair=args.repair,
             config=config,
             **sizes,
         )
@@ -163,6 +175,25 @@ def cmd_record(args: argparse.Namespace) -> int:
         f"frames{failed} -> {args.out}"
     )
     return 1 if recorded.failed else 0
+
+
+def _cameras(text: str, size: tuple[int, int] | None) -> tuple[str, ...]:
+    """The cameras --cameras names (none: no video); ConfigError for a list that names none,
+    and for an --image-size given with none (it would film nothing)."""
+    if text.strip() == "none":
+        if size is not None:
+            raise ConfigError(
+                f"image size: {size[0]}x{size[1]} with --cameras none films nothing; accepted "
+                "--image-size with a camera"
+            )
+        return ()
+    names = _names(text)
+    if not names:
+        raise ConfigError(
+            f"cameras: {text!r} names none; accepted none (no video), or some of overview, "
+            "front, top, left_wrist, right_wrist"
+        )
+    return names
 
 
 def _names(text: str) -> tuple[str, ...]:

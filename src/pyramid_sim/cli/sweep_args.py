@@ -65,6 +65,13 @@ def add_sweep_args(p: argparse.ArgumentParser) -> None:
         default=900.0,
         help="seconds a run may take before it is stopped and failed (default 900)",
     )
+    p.add_argument(
+        "--retry-failed",
+        action="store_true",
+        help="run again the points DIR/sweep.csv holds as crashed or timed out (say with a "
+        "larger --timeout); their new rows stand (default: a point in the CSV is not run "
+        "again)",
+    )
     add_backend_args(p, "builds")
     add_out_args(p, Path("runs/sweep"))
 
@@ -88,4 +95,5 @@ def sweep_config_from_args(args: argparse.Namespace) -> SweepConfig:
         timeout=args.timeout,
         backend=args.backend,
         ray_address=args.ray_address,
+        retry_failed=args.retry_failed,
     )

@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import math
+import stat
 from pathlib import Path
 
 from ..config import BrickConfig
@@ -61,6 +62,15 @@ def _read_text(path: Path) -> str:
     ConfigError for a file that cannot be read, is too large, or is not UTF-8 text."""
     where = f"goals: {path.name}"
     try:
+        mode = path.stat().st_mode
+    except OSError as err:
+        raise ConfigError(f"goals: cannot read {str(path)!r} ({err.strerror})") from None
+    if not stat.S_ISREG(mode):  # a FIFO or a device would be read forever, a folder not at all
+        raise ConfigError(
+            f"goals: {str(path)!r} is not a regular file ({_kind(mode)}); accepted a JSON or "
+            "CSV file"
+        )
+    try:
         with path.open("rb") as file:
             data = file.read(MAX_BYTES + 1)
     except OSError as err:
@@ -74,6 +84,13 @@ def _read_text(path: Path) -> str:
             f"{where} is not UTF-8 text (byte {err.start} is 0x{data[err.start]:02x}); "
             "accepted JSON or CSV in UTF-8"
         ) from None
+
+
+def _kind(mode: int) -> str:
+    """What a file of `mode` is, in words, where it is not a regular file."""
+    kinds = ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket"),
+             (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"))  # fmt: skip
+    return next((name for test, name in kinds if test(mode)), "not a file")
 
 
 def _json_rows(text: str, name: str) -> list[dict]:

@@ -91,17 +91,29 @@ def write_json_atomic(path: Path, document: dict[str, Any]) -> None:
 
 
 def check_writable_dir(path: Path, what: str = "out") -> None:
-    """ConfigError unless `path` is, or can be made, a writable folder (nothing is created)."""
-    probe = path
+    """ConfigError unless `path` is, or can be made, a writable folder (nothing is created): a
+    link to nothing cannot be made one (the OS would say only "File exists")."""
+    probe = Path(path)
     while not probe.exists():
+        if probe.is_symlink():
+            raise ConfigError(
+                f"{what}: {str(probe)!r} is a link to {os.readlink(probe)!r}, which does not "
+                "exist; accepted a folder, a path where one can be made, or a link to a folder"
+            )
         probe = probe.parent
     if not probe.is_dir():
-        raise ConfigError(f"{what}: {str(probe)!r} is not a folder")
+        raise ConfigError(
+            f"{what}: {str(probe)!r} is not a folder; accepted a folder, or a path where one "
+            "can be made"
+        )
     try:
         with tempfile.TemporaryFile(dir=probe):
             pass
     except OSError as err:
-        raise ConfigError(f"{what}: {str(probe)!r} is not writable ({err.strerror})") from None
+        raise ConfigError(
+            f"{what}: {str(probe)!r} is not writable ({err.strerror}); accepted a folder this "
+            "user may write in"
+        ) from None
 
 
 @contextmanager

@@ -20,7 +20,8 @@ ACCELERATION_SHARE = 0.5  # of the joints' acceleration limits: at full, several
 # asked for more torque than the arm has
 JERK_TIME = 0.05  # s from rest to full acceleration: the jerk limit is acceleration / this
 # The same where a policy's joint targets reach the generator straight (the joint modes): it
-# is then the only filter between a jittering policy and the servos (docs/learning.md)
+# is then the only filter between a jittering policy and the servos
+# (docs/notes/2026-11-28-learning.md)
 JOINT_JERK_TIME = 0.15
 GRIPPER_SPEED = 2.0  # times the gap's full stroke a close time: fingers closing on a brick
 OPENING_SPEED = 10.0  # the same, opening: a hand lets go at once, before a jolt drags the brick
@@ -46,11 +47,14 @@ class MotionLimits:
 
 
 def motion_limits(
-    robot: RobotDescription, close_time: float, jerk_time: float = JERK_TIME
+    robot: RobotDescription,
+    close_time: float,
+    jerk_time: float = JERK_TIME,
+    share: float = ACCELERATION_SHARE,
 ) -> MotionLimits:
     """The robot's limits in the command's order: the joints at the IK's speed margins and
-    ACCELERATION_SHARE of their acceleration limits, reached in `jerk_time`, the finger gap
-    closing at GRIPPER_SPEED strokes a `close_time` and opening at OPENING_SPEED."""
+    `share` of their acceleration limits, reached in `jerk_time`, the finger gap closing at
+    GRIPPER_SPEED strokes a `close_time` and opening at OPENING_SPEED."""
     speed: list[float] = []
     falling: list[float] = []
     acceleration: list[float] = []
@@ -60,7 +64,7 @@ def motion_limits(
         for i, (v, a) in enumerate(zip(arm.velocity_limits, arm.acceleration_limits)):
             speed.append((ARM_VELOCITY_MARGIN if i < 4 else VELOCITY_MARGIN) * v)
             falling.append(speed[-1])
-            acceleration.append(ACCELERATION_SHARE * a)
+            acceleration.append(share * a)
             fingers.append(False)
         speed.append(OPENING_SPEED * stroke / close_time)
         falling.append(GRIPPER_SPEED * stroke / close_time)
@@ -88,7 +92,7 @@ class MotionGenerator:
         self._input.max_jerk = limits.jerk.tolist()
         # Every joint arrives together (Ruckig's default, said here since it matters): joints
         # each on its own fastest way asked for torque past the limits under a chunked
-        # gait (docs/learning.md). The fingers keep their own time.
+        # gait (docs/notes/2026-11-28-learning.md). The fingers keep their own time.
         self._input.per_dof_synchronization = [
             Synchronization.No if f else Synchronization.Time for f in limits.fingers
         ]
@@ -134,7 +138,18 @@ class MotionGenerator:
         return lag
 
 
-def arm_motion(config: SimConfig, jerk_time: float = JERK_TIME) -> MotionGenerator:
-    """The motion generator of the settings' robot, stepped at the control rate."""
-    limits = motion_limits(config.robot_description, config.gripper.close_time, jerk_time)
+def hand_modes_share(robot: RobotDescription) -> float:
+    """The share of its joints' acceleration limits the generator behind a hand mode's IK
+    uses for `robot`: its own where it sets one (Baxter's, whose shoulder has less torque to
+    spare), else ACCELERATION_SHARE."""
+    share = robot.hand_modes_acceleration_share
+    return ACCELERATION_SHARE if share is None else share
+
+
+def arm_motion(
+    config: SimConfig, jerk_time: float = JERK_TIME, share: float = ACCELERATION_SHARE
+) -> MotionGenerator:
+    """The motion generator of the settings' robot, stepped at the control rate, its joints
+    at `share` of their acceleration limits."""
+    limits = motion_limits(config.robot_description, config.gripper.close_time, jerk_time, share)
     return MotionGenerator(limits, config.motion.control_dt)

@@ -57,6 +57,7 @@ class ReachChecker:
         self.config = config
         self.ik = DualArmIK(config, limit_acceleration=False)
         self._known: dict[tuple[str, Pose], str | None] = {}
+        self._postures: dict[tuple[str, Pose], np.ndarray] = {}  # the IK's q where it reached
         self.ik.reset_home()
         self._clear_q = {
             a: self.ik.solve(a, clear_pose(a, config.robot_description)) for a in c.ARMS
@@ -94,9 +95,18 @@ class ReachChecker:
             try:
                 self.ik.solve(arm, pose)
                 self._known[key] = None
+                self._postures[key] = self.ik.configuration.q.copy()
             except UnreachableError as err:
                 self._known[key] = str(err)
         return self._known[key]
+
+    def posture(self, arm: Arm, pose: Pose) -> np.ndarray:
+        """The IK model's joint positions with `arm` at `pose` (solved as `why_not` solves
+        it); UnreachableError if it does not reach it."""
+        reason = self.why_not(arm, pose)
+        if reason is not None:
+            raise UnreachableError(reason)
+        return self._postures[(arm, pose)]
 
     def check(self, plan: Plan) -> None:
         """Raise UnreachableError naming an arm that would wait inside a zone (`in_the_way`),

@@ -78,6 +78,15 @@ BAXTER = RobotDescription(
     max_speed=0.3,
     max_slow_speed=0.15,
     max_turn_rate=0.75,
+    # The hand modes, slower to speed up and to stop: its shoulder s1 holds the arm and a
+    # brick at up to 0.9 of its 50 N m where the layouts reach, and the motion generator,
+    # lagging the IK by a few cm, braked at 2 rad/s^2 (about 8 N m on the outstretched arm):
+    # the expert's waypoints failed on torque, 1.01-1.09 (docs/notes/2026-11-28-baxter-holding.md).
+    # A waypoint's
+    # speed is taken up and dropped at 0.5 m/s^2 (the build's minimum-jerk moves peak near
+    # it), and the generator accelerates the joints at a quarter of their limits.
+    hand_acceleration=0.5,
+    hand_modes_acceleration_share=0.25,
     clear_pose=(0.45, 0.60, 0.30),
     static_bodies=tuple(
         PREFIX + b for b in ("torso", "pedestal", "collision_head_link_1", "collision_head_link_2")

@@ -84,6 +84,10 @@ class RobotDescription:
     max_speed: float = float("inf")  # m/s: caps the motion settings' free-move speed,
     max_slow_speed: float = float("inf")  # their servo speed near bricks,
     max_turn_rate: float = float("inf")  # and the hand's turn rate (rad/s)
+    hand_acceleration: float = float("inf")  # m/s^2: how fast the `waypoint` and `anchored`
+    # modes' hand target gains and sheds its speed (inf: at once, within a control step)
+    hand_modes_acceleration_share: float | None = None  # of the joints' acceleration limits,
+    # the motion generator's behind the hand modes' IK (None: the generator's own share)
     gravity_compensation: bool = True  # the servos hold the arm's weight for free (a Panda's,
     # Baxter's controllers); where False they hold it within their torque, and sag
     pick_clearance: float = 0.0  # m the tool point stands off a brick's centre towards the

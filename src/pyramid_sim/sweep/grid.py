@@ -123,6 +123,7 @@ class SweepConfig:
     ray_address: str | None = None
     robot: RobotName = DEFAULT_ROBOT
     schedule: Schedule = SCHEDULES[0]
+    retry_failed: bool = False  # run again the points sweep.csv has as crashed or timed out
 
     def __post_init__(self) -> None:
         SimConfig(robot=self.robot, schedule=self.schedule)  # unknown: one line naming those known

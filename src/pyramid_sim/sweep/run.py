@@ -31,11 +31,11 @@ def run_sweep(
     on_row: Callable[[RunResult], None] | None = None,
     on_skip: Callable[[int], object] | None = None,
 ) -> tuple[list[SweepRow], int]:
-    """Run what is missing from `out/sweep.csv`; returns the grid's rows and how many ran now.
-    Each run's full result document goes to `out/runs/`; `on_skip` hears how many runs were
-    already in the CSV."""
+    """Run what is missing from `out/sweep.csv` (and, with `config.retry_failed`, what crashed
+    or timed out there); returns the grid's rows and how many ran now. Each run's full result
+    document goes to `out/runs/`; `on_skip` hears how many runs are not run again."""
     store = SweepStore(out / "sweep.csv")
-    done = store.done()
+    done = store.done(config.retry_failed)
     todo = [spec for spec in config.runs() if spec.key() not in done]
     if on_skip is not None:
         on_skip(len(config.runs()) - len(todo))

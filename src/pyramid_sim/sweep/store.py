@@ -3,7 +3,8 @@
 A row is written with one `write` on a file opened for appending and then flushed to disk, so a
 sweep killed at any moment leaves whole rows and at most one torn last line, which the next
 run cuts off before it appends. The key columns name a run; a run whose key is already in the
-file is not run again.
+file is not run again, unless it crashed or timed out and the sweep retries such runs: its
+new row is appended, and where a key has two rows the later one stands.
 """
 
 from __future__ import annotations
@@ -100,25 +101,36 @@ class SweepStore:
         # cannot start (a cluster that refuses it) leaves no empty table behind
 
     def _repair_and_load(self) -> None:
+        """Read the rows, having checked the file is a sweep's table before touching it; then
+        cut a torn last line (a sweep killed mid-write), or remove a file that holds nothing
+        whole, to be written afresh with the first run."""
         raw = self.path.read_bytes()
-        if raw and not raw.endswith(b"\n"):  # killed mid-write: drop the torn line
-            raw = raw[: raw.rfind(b"\n") + 1]
-            with open(self.path, "r+b") as f:
-                f.truncate(len(raw))
-        if not raw:
-            self.path.unlink()  # an empty file: written afresh with the first run
+        whole = raw[: raw.rfind(b"\n") + 1]
+        header = _line(COLUMNS).encode()
+        if not whole and header.startswith(raw):  # empty, or killed writing the header
+            self.path.unlink()
             return
-        reader = csv.DictReader(io.StringIO(raw.decode()))
-        if tuple(reader.fieldnames or ()) != COLUMNS:
+        try:
+            reader = csv.DictReader(io.StringIO(whole.decode()))
+            fields = tuple(reader.fieldnames or ())
+        except (UnicodeDecodeError, csv.Error) as err:
+            raise ConfigError(
+                f"out: {str(self.path)!r} is not a sweep's table ({err}); accepted a new "
+                "folder, or one whose sweep.csv a sweep wrote"
+            ) from None
+        if fields != COLUMNS:
             raise ConfigError(
                 f"out: {str(self.path)!r} has other columns than this version writes; "
                 "accepted a new folder or one written by the same version"
             )
-        seen: set[tuple[str, ...]] = set()
-        for row in reader:
-            if row_key(row) not in seen:  # a duplicate could only come from a hand edit
-                seen.add(row_key(row))
-                self._rows.append(SweepRow(row))
+        if whole != raw:  # killed mid-write: drop the torn line
+            with open(self.path, "r+b") as f:
+                f.truncate(len(whole))
+        latest: dict[tuple[str, ...], SweepRow] = {}
+        for row in reader:  # a retried run's row follows the failed one: the later stands
+            latest.pop(row_key(row), None)
+            latest[row_key(row)] = SweepRow(row)
+        self._rows = list(latest.values())
 
     def _append_text(self, text: str) -> None:
         fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
@@ -132,8 +144,10 @@ class SweepStore:
     def rows(self) -> list[SweepRow]:
         return list(self._rows)
 
-    def done(self) -> set[tuple[str, ...]]:
-        return {row_key(r) for r in self._rows}
+    def done(self, retry_failed: bool = False) -> set[tuple[str, ...]]:
+        """The keys of the runs not to run again: every run in the file, or with
+        `retry_failed` those that did not crash or time out."""
+        return {row_key(r) for r in self._rows if not (retry_failed and r.broken)}
 
     def append(self, row: dict[str, Any]) -> None:
         """Write one finished run (its values spelled as the row has them)."""
@@ -142,7 +156,7 @@ class SweepStore:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self._append_text(_line(COLUMNS))
         self._append_text(_line([text_row[c] for c in COLUMNS]))
-        self._rows.append(text_row)
+        self._rows = [r for r in self._rows if r.key != text_row.key] + [text_row]
 
 
 def _cell(value: Any) -> str:

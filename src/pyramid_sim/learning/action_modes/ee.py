@@ -21,7 +21,7 @@ from ...config import SimConfig
 from ...core.poses import Pose
 from ...physics import names as c
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JERK_TIME
+from ...physics.motion_generator import JERK_TIME, hand_modes_share
 from ...physics.reach import plan_poses
 from ...robots import RobotDescription
 from ..task.layout import Layout
@@ -167,6 +167,7 @@ class EndEffectorMode:
         self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
         self.moved = hand_moved(self.names, ("dx", "dy", "dz"))
         self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
+        self.acceleration_share = hand_modes_share(parts.config.robot_description)
 
     @classmethod
     def size(cls, robot: RobotDescription) -> int:

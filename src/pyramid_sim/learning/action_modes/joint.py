@@ -1,7 +1,8 @@
 """The environment's `action_mode="joint"`: both arms' joint targets and finger gaps, in the
 state's layout (`task/layout.Layout`). The target goes to the motion generator, which is then
 the only filter between a policy's jitter and the servos, and reaches its jerk slower than
-behind the IK (docs/learning.md, "The joint modes' filtering"); with the generator off, a
+behind the IK (docs/notes/2026-11-28-learning.md, "The joint modes' filtering"); with the generator
+off, a
 step's targets are joined by a spline (target_spline.py)."""
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import numpy as np
 from gymnasium import spaces
 
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JOINT_JERK_TIME
+from ...physics.motion_generator import ACCELERATION_SHARE, JOINT_JERK_TIME
 from ...robots import RobotDescription
 from ..task.spaces import joint_space
 from .mode import ExpertMove, ModeParts, Waypoints
@@ -33,6 +34,7 @@ class JointMode:
         self.names, self.units = parts.layout.names, parts.units
         self.moved = parts.layout.joints
         self.jerk_time = JOINT_JERK_TIME
+        self.acceleration_share = ACCELERATION_SHARE
         self._ramp: Callable[[float], np.ndarray] | None = None
         self._last: tuple[np.ndarray, np.ndarray] = (np.zeros(0), np.zeros(0))
 

@@ -58,6 +58,7 @@ class ActionMode(Protocol):
     moved: np.ndarray  # bool, per entry: it moves an arm (DART's noise, the perturbations)
     moved_unit: str  # of the entries that move an arm: "rad" or "m"
     jerk_time: float  # s from rest to full acceleration: the motion generator's jerk limit
+    acceleration_share: float  # of the joints' acceleration limits the generator uses
     hand_poses: bool  # its actions are hand poses its own IK follows (the expert gives poses)
 
     @classmethod

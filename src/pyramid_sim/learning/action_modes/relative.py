@@ -4,7 +4,8 @@ where the joint is measured at the step's start, the finger gaps as in `joint` m
 Why: an absolute target asks a learner for the arm's whole posture to a few milliradians
 (a 5 mm placement), an output spread over the joints' ranges; a relative one asks only for the
 next move, small and near zero while a hand grips or waits, so the same network error is a
-far smaller error at the hand (docs/learning.md has the measurements). The command a relative
+far smaller error at the hand (docs/notes/2026-11-28-learning.md has the measurements). The command
+a relative
 action makes goes through the same motion generator as a joint action.
 """
 
@@ -19,7 +20,8 @@ from .joint import JointMode
 from .mode import ExpertMove, ModeParts
 
 # rad: the most the expert's relative action moves an arm joint, with the motion generator on
-# (`led` says why; docs/learning.md has the measurements, and why joint actions keep the
+# (`led` says why; docs/notes/2026-11-28-learning.md has the measurements, and why joint actions
+# keep the
 # IK's whole lead: a held absolute target that near stops the arm)
 LEAD = 0.2
 

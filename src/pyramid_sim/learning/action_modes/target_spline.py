@@ -15,7 +15,8 @@ def spline_ramp(
     of it, and the state the next step ramps from. A step one control step long commands its
     target, as the build does; a longer one follows the quadratic B-spline of the targets
     (velocity continuous, half a step behind them): a straight ramp to each target changes the
-    velocity at once every step, which doubled the torque peaks (docs/learning.md)."""
+    velocity at once every step, which doubled the torque peaks
+    (docs/notes/2026-11-28-learning.md)."""
     mid = (last + target) / 2
     if steps == 1:
         return (lambda share: target), (target, mid)

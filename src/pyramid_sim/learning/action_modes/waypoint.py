@@ -7,7 +7,9 @@ The arm goes there as the `ee` mode's targets move: straight, at most the hand's
 at its slow speed over the last `NEAR` of the way (a brick is met slowly, as the build's own
 servo moves meet it), its yaw at the hand's turn rate; the IK, its limits, the leash, the box
 and the floor are the `ee` mode's, and its joints go through the motion generator. A waypoint
-that jitters or jumps from one action to the next moves the target no faster for it. The
+that jitters or jumps from one action to the next moves the target no faster for it. Where the
+robot bounds its hand's acceleration (Baxter's), the target also gains and sheds its speed no
+faster than that, braking in time to stop where the waypoint is. The
 gap says open or closed, and the hand grips and releases as the scripted builder's does
 (gripper_switch.py).
 """
@@ -25,7 +27,7 @@ from ...core.poses import Pose
 from ...core.primitives import StepKind
 from ...physics import names as c
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JERK_TIME
+from ...physics.motion_generator import JERK_TIME, hand_modes_share
 from ...robots import RobotDescription
 from ..task.layout import Layout
 from ..task.lerobot_units import own_units
@@ -50,11 +52,14 @@ class WaypointControl:
         speeds: tuple[float, float, float],
         control_dt: float,
         hands: GripperSwitch,
+        acceleration: float = math.inf,
     ) -> None:
         self.ee = ee
         self.hands = hands
         self.speed, self.slow_speed, self.turn_rate = speeds
         self.dt = control_dt
+        self.acceleration = acceleration  # m/s^2 of the target's; inf: speeds change at once
+        self._velocity = np.zeros((len(c.ARMS), 3))  # each target's, where it is bounded
         low, high = [], []
         for gap in ee.gaps:
             low += [-REACH, -REACH, 0.0, -2 * math.pi, layout.low[gap]]
@@ -68,6 +73,7 @@ class WaypointControl:
         """Aim each arm where its tool centre is (the `ee` mode's box and floor), its hand as
         it is commanded."""
         self.ee.reset(loop)
+        self._velocity[:] = 0.0
         gaps = loop.data.ctrl[loop.handles.ctrl_index][self.ee.gaps]
         self.hands.reset([float(g) for g in gaps])
 
@@ -80,12 +86,32 @@ class WaypointControl:
             way = np.array([x - t.x, y - t.y, z - t.z])
             distance = float(np.linalg.norm(way))
             speed = min(self.slow_speed if distance <= NEAR else self.speed, distance / LAG)
-            if distance > speed * self.dt:
+            if math.isfinite(self.acceleration):
+                way = self._accelerated(k, way, distance, speed)
+            elif distance > speed * self.dt:
                 way *= speed * self.dt / distance
             turn = math.remainder(yaw - t.yaw, 2 * math.pi)
             turn = max(-self.turn_rate * self.dt, min(self.turn_rate * self.dt, turn))
             moves[5 * k : 5 * k + 5] = [*way, turn, self.hands.command(k, gap, self.dt)]
         return self.ee.move(loop, moves)
+
+    def _accelerated(self, k: int, way: np.ndarray, distance: float, speed: float) -> np.ndarray:
+        """Arm `k`'s target's move this control step toward the end of `way`, at `speed` or
+        what braking at the bound still stops from, its velocity changed by at most the
+        bound's share of the step."""
+        speed = min(speed, math.sqrt(2.0 * self.acceleration * distance))
+        wanted = way * (speed / distance) if distance > 0.0 else np.zeros(3)
+        change = wanted - self._velocity[k]
+        most = self.acceleration * self.dt
+        size = float(np.linalg.norm(change))
+        if size > most:
+            change *= most / size
+        velocity = self._velocity[k] + change
+        move = velocity * self.dt
+        if float(np.linalg.norm(move)) > distance:  # there within this step: stop on it
+            move, velocity = way, way / self.dt
+        self._velocity[k] = velocity
+        return move
 
     def expert(self, loop: BuildLoop) -> np.ndarray:
         """Where the scripted builder's current move ends for each arm (of a move up, over and
@@ -122,6 +148,7 @@ def waypoints(config: SimConfig, layout: Layout, steps: int) -> WaypointControl:
         (motion.speed, motion.slow_speed, motion.turn_rate),
         motion.control_dt,
         GripperSwitch(config, len(c.ARMS)),
+        config.robot_description.hand_acceleration,
     )
 
 
@@ -143,6 +170,7 @@ class WaypointMode:
         self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
         self.moved = hand_moved(self.names, ("x", "y", "z"))
         self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
+        self.acceleration_share = hand_modes_share(parts.config.robot_description)
 
     @classmethod
     def size(cls, robot: RobotDescription) -> int:

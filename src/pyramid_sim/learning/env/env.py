@@ -2,9 +2,10 @@
 
 A step lasts 1/`fps` seconds (by default a recording's frame): the action is both arms' joint
 targets and finger gaps (`layout.Layout`), or as `action_mode` says (learning/action_modes/,
-docs/learning.md). One action's path: `step` asks the mode for its target, the control steps
+docs/env.md). One action's path: `step` asks the mode for its target, the control steps
 (control_steps.py) ask it for each control step's command, the motion generator smooths it,
-and the build loop (physics/loop.py) steps the physics toward it. The environment feeds bricks to the spawn spot, and judges placements and failures from what
+and the build loop (physics/loop.py) steps the physics toward it. The environment feeds bricks to
+the spawn spot, and judges placements and failures from what
 happens, whoever drives it; `ExpertPolicy` (`expert_action()`) is the scripted builder
 (scheduler, primitives, mink IK) as a policy. Each reset draws its episode (`variation`: where
 the bricks are fed, where the structure stands, at `full` the physics and looks) from its seed:
@@ -53,7 +54,7 @@ OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "he
 
 class BuildEnv(gymnasium.Env):
     """Two arms build `structure`; keywords as `pyramid_sim.build` takes them, and the
-    environment's own (the module's docstring, docs/learning.md)."""
+    environment's own (the module's docstring, docs/env.md)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
     _reset_needed = True  # Gymnasium's contract: reset before the first step
@@ -126,7 +127,7 @@ class BuildEnv(gymnasium.Env):
             action_mode, ModeParts(self.config, self.layout, self.control_steps, units, limit)
         )
         self.action_space, self.action_units = self.mode.space, self.mode.units
-        self.generator = arm_motion(self.config, self.mode.jerk_time)
+        self.generator = arm_motion(self.config, self.mode.jerk_time, self.mode.acceleration_share)
         self._low = self.action_space.low.astype(np.float64)
         self._high = self.action_space.high.astype(np.float64)
 

@@ -10,6 +10,7 @@ from ...choices import EVAL_FIRST_SEED
 from ...config import MotionConfig
 from ...errors import ConfigError
 from ...jobs.backends import check_backend
+from ...options import plain_numbers
 from ...params import EPISODES, MAX_STEPS, WORKERS
 from ..task.layout import check_seed, control_steps
 from ..task.variation import DEFAULT_LEVEL, check_level
@@ -43,6 +44,8 @@ class EvaluateConfig:
     ray_address: str | None = None  # with ray: a cluster's (default: a Ray started here)
 
     def __post_init__(self) -> None:
+        for name in ("fps", "episodes", "first_seed", "videos", "max_steps", "workers"):
+            object.__setattr__(self, name, plain_numbers({name: getattr(self, name)})[name])
         EPISODES.check_whole(self.episodes)
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
@@ -50,8 +53,8 @@ class EvaluateConfig:
         control_steps(self.fps, MotionConfig().control_dt)
         check_seed(self.first_seed)
         check_seed(self.first_seed + self.episodes - 1)
-        if self.max_steps is not None and not MAX_STEPS.low <= self.max_steps <= MAX_STEPS.high:
-            raise ConfigError(f"max steps: {self.max_steps}; accepted {MAX_STEPS.whole_text}")
+        if self.max_steps is not None:
+            MAX_STEPS.check_whole(self.max_steps)  # 1.5 steps reached Gymnasium's TimeLimit
         if not 0 <= self.videos <= self.episodes:
             raise ConfigError(
                 f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"

@@ -107,5 +107,5 @@ def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
     """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
     try:
         return method(*args)
-    except Exception as err:
+    except (Exception, SystemExit) as err:  # an exit too: the user's code, in one line
         raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err

@@ -6,6 +6,7 @@ and `reset()`, made for one environment."""
 from __future__ import annotations
 
 import importlib
+import os
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -67,11 +68,26 @@ class _Function:
         return np.asarray(self.function(observation))
 
 
+ACCEPTED = f"{', '.join(NAMED)}, module:factory, or a lerobot checkpoint folder"
+
+
+def check_spec(spec: object) -> str:
+    """`spec` as the text that names a policy (a folder's path as its text); ConfigError for
+    what cannot name one: not text, or empty (which would be the working folder)."""
+    if isinstance(spec, os.PathLike):
+        spec = os.fspath(spec)
+    if not isinstance(spec, str) or not spec.strip():
+        raise ConfigError(f"policy: {spec!r} is not one; accepted {ACCEPTED}")
+    return spec
+
+
 def make_policy(spec: str, env: Any) -> Policy:
     """The policy `spec` names for `env`: expert, zero, random, `module:factory` (called with
     the environment, it returns a policy, or a function of the observation), or a lerobot
-    checkpoint folder. ConfigError naming what is accepted otherwise; MachineError for a
-    checkpoint where lerobot is not installed."""
+    checkpoint folder. ConfigError naming what is accepted otherwise, and for a module or
+    factory that raises (or exits) instead; MachineError for a checkpoint where lerobot is not
+    installed."""
+    spec = check_spec(spec)
     if spec == "expert":
         return ExpertPolicy(env)
     if spec == "zero":
@@ -84,21 +100,13 @@ def make_policy(spec: str, env: Any) -> Policy:
         return LerobotPolicy(Path(spec), env)
     module, _, name = spec.partition(":")
     if not module or not name:
-        raise ConfigError(
-            f"policy: {spec!r} is not one; accepted {', '.join(NAMED)}, module:factory, or a "
-            "lerobot checkpoint folder"
-        )
-    try:
-        factory = getattr(importlib.import_module(module), name)
-    except (ImportError, AttributeError) as err:
-        raise ConfigError(
-            f"policy: {spec!r} cannot be loaded ({err}); accepted module:factory"
-        ) from None
+        raise ConfigError(f"policy: {spec!r} is not one; accepted {ACCEPTED}")
+    factory = _factory(spec, module, name)
     try:
         made = factory(env)
-    except Exception as err:  # the user's code: one line naming it, not a traceback
+    except (Exception, SystemExit) as err:  # the user's code: one line naming it
         raise ConfigError(
-            f"policy: {spec!r} failed to make its policy ({type(err).__name__}: {err}); "
+            f"policy: {spec!r} failed to make its policy ({_raised(err)}); "
             "accepted a factory that returns a policy for the environment"
         ) from err
     if hasattr(made, "act"):
@@ -111,3 +119,32 @@ def make_policy(spec: str, env: Any) -> Policy:
         f"policy: {spec!r} returned {type(made).__name__}; accepted an object with act(), or a "
         "function of the observation"
     )
+
+
+def _factory(spec: str, module: str, name: str) -> Any:
+    """`module`'s `name`, imported; ConfigError naming what went wrong where the module is
+    missing, fails to import (a syntax error, an exception, an exit at import) or lacks
+    `name`: the user's code, told in one line."""
+    try:
+        imported = importlib.import_module(module)
+    except ImportError as err:
+        raise ConfigError(
+            f"policy: {spec!r} cannot be loaded ({err}); accepted module:factory, the module "
+            "on the import path (the current folder is on it)"
+        ) from None
+    except (Exception, SystemExit) as err:  # its code ran and failed (SyntaxError among them)
+        raise ConfigError(
+            f"policy: {spec!r} cannot be loaded: importing {module!r} raised {_raised(err)}; "
+            "accepted module:factory, a module that imports"
+        ) from err
+    if not callable(factory := getattr(imported, name, None)):
+        raise ConfigError(
+            f"policy: {spec!r} cannot be loaded ({module!r} has no function {name!r}); "
+            "accepted module:factory"
+        )
+    return factory
+
+
+def _raised(err: BaseException) -> str:
+    """What an exception of the user's code says: its type and its text."""
+    return f"{type(err).__name__}: {err}" if str(err) else type(err).__name__

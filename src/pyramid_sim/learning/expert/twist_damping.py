@@ -6,7 +6,7 @@ acceleration bounds the IK's QP then finds that turn the cheapest way down to a 
 asks for it at full speed; the servos lag the two joints unequally and the hand swings across
 the spot. A damping term on the difference of the two joints' steps makes that turn cost what
 it risks, and leaves their turn together (the hand's yaw) and every other joint as it was
-(docs/learning.md, "The arm's twist damped").
+(docs/notes/2026-11-28-learning.md, "The arm's twist damped").
 """
 
 from __future__ import annotations

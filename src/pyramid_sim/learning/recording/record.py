@@ -4,7 +4,9 @@ An episode is one whole build from its seed (`first_seed + episode`), kept at `f
 cameras asked for. Re-running adds only the episodes missing; an episode is in the dataset
 once its files and its record (`meta/pyramid_sim/episode_NNNNNN.json`: its seed, success and
 result.json) are in place, which happens together, Ctrl-C and SIGTERM held for that moment.
-Resuming refuses a folder recorded with other settings, since they shape the files.
+Resuming refuses a folder recorded with other settings, since they shape the files, a folder
+holding anything else, and an episode whose files are damaged unless asked to record it again
+(resume_checks.py).
 """
 
 from __future__ import annotations
@@ -31,11 +33,11 @@ from ..task.variation import check_differ
 from .episode import PRIMITIVES, task_text
 from .filming import FilmAway, PolicyMaker, features, film_staged, learner_for, make_env
 from .record_config import RecordConfig, Recorded
+from .resume_checks import RECORDS, check_folder, damaged_episodes, forget, read_records, refusal
 from .staging import STAGING, land, staged
 
 __all__ = ["RecordConfig", "Recorded", "record"]
 
-RECORDS = "meta/pyramid_sim"  # pyramid_sim's own files, where lerobot does not look
 DATASET_DOC = f"{RECORDS}/dataset.json"
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
 # What drove an episode (DART's noise, a DAgger round's policy and its share) is among it: a
@@ -44,14 +46,6 @@ RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", 
 DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
 # Settings added since the first recordings, as an episode recorded before them had them.
 LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0}
-
-
-def _records(root: Path) -> dict[int, dict[str, Any]]:
-    found = {}
-    for path in sorted((root / RECORDS).glob("episode_*.json")):
-        record = json.loads(path.read_text())
-        found[int(record["episode_index"])] = record
-    return found
 
 
 def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
@@ -77,13 +71,21 @@ def record(
     on_frame: Callable[[int, int], Any] | None = None,
     on_episode: Callable[[int], Any] | None = None,
     policies: PolicyMaker | None = None,
+    repair: bool = False,
 ) -> Recorded:
-    """Record the episodes `out` lacks; `on_frame(episode, its frames so far)` after each
-    frame (with workers, once an episode lands, with all its frames); `on_episode(episodes in
-    the dataset)` before the first is filmed and after each lands. A DAgger round's learner
-    (`config.policy`) is made by `policies(policy, env)`, in each worker."""
-    records = _records(out)
-    _check_same_recording(out, records, config)  # before the scene is compiled
+    """Record the episodes `out` lacks (and with `repair` those whose files are damaged);
+    `on_frame(episode, its frames so far)` after each frame (with workers, once an episode
+    lands, with all its frames); `on_episode(episodes in the dataset)` before the first is
+    filmed and after each lands. A DAgger round's learner (`config.policy`) is made by
+    `policies(policy, env)`, in each worker."""
+    records, damaged = read_records(out)
+    check_folder(out, bool(records or damaged))  # before the scene is compiled
+    _check_same_recording(out, records, config)
+    damaged.update(damaged_episodes(out, records))
+    if damaged and not repair:
+        raise refusal(out, damaged)
+    forget(out, damaged)
+    records = {i: r for i, r in records.items() if i not in damaged}
     env = make_env(config)
     try:
         check_cameras(config.cameras, env.config.robot_description)
@@ -254,8 +256,11 @@ def _check_same_recording(
     wanted = _settings(config)
     for index, rec in sorted(records.items()):
         kept = {**LATER_SETTINGS, **rec.get("config", {})}
+        filmed = bool(kept.get("cameras")) or bool(config.cameras)  # or no image has a size
         for name in wanted:
             if name in RUN_ONLY or kept.get(name) == wanted[name]:
+                continue
+            if name == "image_size" and not filmed:
                 continue
             setting, was, now = _difference(name, kept.get(name), wanted[name])
             raise ConfigError(

@@ -16,9 +16,14 @@ from ...choices import (
 from ...config import MotionConfig
 from ...errors import ConfigError
 from ...jobs.backends import check_backend
+from ...options import names_argument, plain_numbers
 from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
 from ..task.layout import check_image_size, control_steps
+from ..task.randomize import check_parts
 from ..task.variation import DEFAULT_LEVEL, check_level
+
+CAMERA_NAMES = "overview, front, top, left_wrist, right_wrist"
+RANDOMIZED = "all, none, or some of the parts"
 
 
 @dataclass(frozen=True)
@@ -48,10 +53,21 @@ class RecordConfig:
     beta: float = 0.5
 
     def __post_init__(self) -> None:
+        for name in ("episodes", "first_seed", "fps", "workers", "noise", "linger", "beta"):
+            object.__setattr__(self, name, plain_numbers({name: getattr(self, name)})[name])
+        for name, accepted in (("cameras", CAMERA_NAMES), ("randomize", RANDOMIZED)):
+            object.__setattr__(self, name, names_argument(getattr(self, name), name, accepted))
+        object.__setattr__(self, "image_size", check_image_size(self.image_size))
         EPISODES.check_whole(self.episodes)
         control_steps(self.fps, MotionConfig().control_dt)
-        check_image_size(self.image_size)
+        if not self.cameras and tuple(self.image_size) != RECORD_IMAGE_SIZE:
+            raise ConfigError(
+                f"image size: {tuple(self.image_size)} with no camera films nothing; accepted "
+                "a camera to film at it, or the default size"
+            )
         check_level(self.variation)
+        if not check_parts(self.randomize):  # "none" is no part: kept as no parts are
+            object.__setattr__(self, "randomize", ())
         WORKERS.check_whole(self.workers)
         check_backend(self.backend, self.ray_address)
         NOISE.check(self.noise)

@@ -26,15 +26,37 @@ COLOURED = ("floor", "wall", "table", "cabinet")  # materials whose colour is dr
 TEXTURED = ("floor", "wall", "table", "brick")  # textures drawn (every brick's its own speckle)
 
 
+ACCEPTED = f"all, none, or some of {', '.join(PARTS)}"
+
+
 def check_parts(parts: tuple[str, ...]) -> tuple[str, ...]:
-    """The parts asked for ("all" for every one), each known: ConfigError naming the first
-    that is not."""
+    """The parts asked for: "all" alone for every one, "none" alone (or nothing) for none, or
+    some of PARTS, each once; ConfigError naming the first that is not so."""
+    if isinstance(parts, str):
+        raise ConfigError(
+            f"randomize: {parts!r} is one name, not a sequence of them; accepted {ACCEPTED}"
+        )
+    parts = tuple(parts)
+    for word in ("all", "none"):
+        if word in parts and len(parts) > 1:
+            raise ConfigError(
+                f"randomize: {word!r} stands alone, not beside {_others(parts, word)}; "
+                f"accepted {ACCEPTED}"
+            )
     if parts == ("all",):
         return PARTS
+    if parts == ("none",):
+        return ()
     for part in parts:
         if part not in PARTS:
-            raise ConfigError(f"randomize: unknown {part!r}; accepted all, {', '.join(PARTS)}")
-    return tuple(parts)
+            raise ConfigError(f"randomize: unknown {part!r}; accepted {ACCEPTED}")
+    if len(set(parts)) != len(parts):
+        raise ConfigError(f"randomize: {', '.join(parts)} names one twice; accepted each once")
+    return parts
+
+
+def _others(parts: tuple[str, ...], word: str) -> str:
+    return ", ".join(repr(p) for p in parts if p != word) or repr(word)
 
 
 def draw(seed: int, parts: tuple[str, ...]) -> dict[str, Any]:

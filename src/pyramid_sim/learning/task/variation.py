@@ -53,9 +53,10 @@ def randomized(level: str, parts: tuple[str, ...]) -> tuple[str, ...]:
 
 def draw_layout(seed: int, level: str, attempt: int = 0) -> dict[str, Any]:
     """The layout of the episode of `seed` at `level` (empty at `fixed`): plain numbers, as
-    the episode's record keeps them. A draw that puts a pose out of the arms' reach, or the
-    structure where the feeder sets no brick, is drawn again (`attempt` 1, 2, ...: the environment tries up to ATTEMPTS), so the region a
-    structure is drawn in is the part of the ranges its every pose reaches."""
+    the episode's record keeps them. A draw that puts a pose out of the arms' reach, the
+    structure where the feeder sets no brick, or a brick where its arm could barely hold it
+    still, is drawn again (`attempt` 1, 2, ...: the environment tries up to ATTEMPTS), so the
+    region a structure is drawn in is the part of the ranges its every pose reaches."""
     if level == "fixed":
         return {}
     rng = np.random.default_rng([seed, STREAM, attempt] if attempt else [seed, STREAM])
