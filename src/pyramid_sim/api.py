@@ -186,32 +186,20 @@ def record(
     config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
-    """Record the scripted expert building `name` as a LeRobot dataset (v3.0) in the folder
-    `out`: `episodes` whole builds from seeds `seed`, `seed` + 1, ..., at `fps` with `cameras`
-    at `image_size` (height, width), each drawn from its seed at `variation` (fixed, layout or
-    full) with its `randomize` parts; `workers` at once, in processes or as Ray tasks
-    (`backend="ray"`, on the cluster at `ray_address` or a Ray started here). With `noise`
-    (rad on each joint in the joint and relative modes, m on each hand's x, y and z in the
-    waypoint and anchored modes), what is executed is the expert's action plus an offset drawn
-    each second, the label the expert's (DART); a build that succeeds goes on `linger` s more.
-    With `policy` (as `evaluate` takes one), a DAgger round: the policy drives each 2 s span
-    the expert does not (the expert a share `beta` of them), the expert labelling every frame;
-    rounds may add episodes to one dataset. Episodes already in `out` are kept; a folder
-    holding anything else is refused, and so is an episode whose files are damaged, unless
-    `repair` records it again. `on_frame(episode, its frames so far)` hears each frame (with
-    workers, an episode's all at once), `on_episode(episodes in the dataset)` the count before
-    the first is filmed and after each lands. `options` as for `build`."""
-    if old_order or out is None:
-        raise ConfigError(
-            "out: record takes the structure first and the dataset's folder as out=, as "
-            "build, plan and evaluate take the structure first; accepted "
-            "record('pyramid-even', out='runs/dataset', ...), not record(folder, structure)"
-        )
+    """Record the expert building `name` as a LeRobot dataset (v3.0) in the folder `out`:
+    `episodes` builds from seeds `seed`, `seed` + 1, ... at `fps`, `cameras` at `image_size`,
+    each drawn at `variation` with its `randomize` parts; `workers` at once (`backend="ray"`:
+    Ray tasks, at `ray_address`). `noise` is DART's (rad on each joint in the joint modes, m on
+    each hand's x, y, z in the hand modes); a success goes on `linger` s more. With `policy` (as
+    `evaluate` takes one), a DAgger round: it drives the 2 s spans the expert does not (a share
+    `beta`), the expert labelling every frame. Episodes in `out` are kept; a folder holding
+    anything else, or a damaged episode (unless `repair`), is refused. `on_frame(episode,
+    frames so far)` and `on_episode(episodes in the dataset)` hear progress; `options` as for
+    `build`."""
+    folder = _dataset_folder(old_order, out)
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
         callback_argument(hook, what)
-    folder = written.out_folder(out)
-    assert folder is not None
     from .learning.recording.record import RecordConfig
     from .learning.recording.record import record as run
 
@@ -226,6 +214,20 @@ def record(
 
     with written.held([(folder, "out")]):
         return run(folder, settings_, on_frame, on_episode, make_policy, repair=bool(repair))
+
+
+def _dataset_folder(old_order: tuple[Any, ...], out: str | Path | None) -> Path:
+    """`record`'s folder, given as out= after the structure (ConfigError for the old call,
+    record(folder, structure), or none)."""
+    if old_order or out is None:
+        raise ConfigError(
+            "out: record takes the structure first and the dataset's folder as out=, as "
+            "build, plan and evaluate take the structure first; accepted "
+            "record('pyramid-even', out='runs/dataset', ...), not record(folder, structure)"
+        )
+    folder = written.out_folder(out)
+    assert folder is not None
+    return folder
 
 
 EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",

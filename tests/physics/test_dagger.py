@@ -17,7 +17,7 @@ TASK = dict(layers=1, fps=10, cameras=(), action_mode="anchored", linger=0.0)
 
 
 def _record(root, episodes, **extra):
-    return pyramid_sim.record(root, "pyramid-even", episodes=episodes, **{**TASK, **extra})
+    return pyramid_sim.record("pyramid-even", out=root, episodes=episodes, **{**TASK, **extra})
 
 
 def _frames(root, episode):

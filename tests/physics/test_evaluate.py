@@ -267,7 +267,7 @@ def test_a_checkpoint_is_evaluated_on_what_its_recording_was(tmp_path, checkpoin
 
     assert read == DATASET_DOC  # where the reader looks is where `record` writes
     demos = tmp_path / "demos"
-    pyramid_sim.record(demos, "pyramid-even", episodes=1, cameras=(), fps=10,
+    pyramid_sim.record("pyramid-even", out=demos, episodes=1, cameras=(), fps=10,
                        action_mode="anchored", **TASK)  # fmt: skip
     folder = checkpoint(tmp_path / "c", action=12, dataset=demos)
     monkeypatch.setattr(lerobot_policy, "LerobotPolicy", lambda _, env: HoldStill(env))

@@ -8,8 +8,6 @@ the same reason whichever way it arrives.
 from __future__ import annotations
 
 import argparse
-import os
-import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NoReturn
@@ -293,10 +291,3 @@ def spec_from_args(args: argparse.Namespace, config: SimConfig) -> StructureSpec
         goals=goals,
         goals_source=args.goals.name if args.goals else "",
     )
-
-
-def policies_from_here() -> None:
-    """A `--policy module:factory` found beside the user, as `python -m` finds a module: the
-    current folder on the import path."""
-    if "" not in sys.path and os.getcwd() not in sys.path:
-        sys.path.insert(0, os.getcwd())

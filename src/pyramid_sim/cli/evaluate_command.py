@@ -14,11 +14,11 @@ from .args import (
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
-    policies_from_here,
     size_options,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
+from .paths import policies_from_here
 from .progress import Progress
 
 

@@ -1,11 +1,13 @@
 """What is wrong with a text as an output path, told before anything runs: the OS would
 refuse it only midway (a name over NAME_MAX), or take it for something unmeant (an empty path
 for the working folder, a folder for a file). `args.output_path` reads every one through here.
+And where a `--policy module:factory` is looked for: beside the user, as `python -m` looks.
 """
 
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 
 
@@ -54,3 +56,10 @@ def _is_dir(path: Path) -> bool:
         return path.is_dir()
     except OSError:
         return False
+
+
+def policies_from_here() -> None:
+    """A `--policy module:factory` found beside the user, as `python -m` finds a module: the
+    current folder on the import path."""
+    if "" not in sys.path and os.getcwd() not in sys.path:
+        sys.path.insert(0, os.getcwd())

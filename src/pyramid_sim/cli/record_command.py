@@ -16,10 +16,10 @@ from .args import (
     add_structure_args,
     bounded,
     image_size,
-    policies_from_here,
     whole,
 )
 from .episode_args import add_episode_args, episode_inputs
+from .paths import policies_from_here
 from .progress import Progress
 
 CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"

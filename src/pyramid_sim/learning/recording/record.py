@@ -17,11 +17,9 @@ import shutil
 from bisect import bisect_left
 from collections.abc import Callable
 from contextlib import closing
-from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from ...errors import ConfigError
 from ...output.files import write_atomic
 from ...output.video import signals_held
 from ...version import __version__
@@ -34,18 +32,12 @@ from .episode import PRIMITIVES, task_text
 from .filming import FilmAway, PolicyMaker, features, film_staged, learner_for, make_env
 from .record_config import RecordConfig, Recorded
 from .resume_checks import RECORDS, check_folder, damaged_episodes, forget, read_records, refusal
+from .same_recording import check_same_recording, settings_of
 from .staging import STAGING, land, staged
 
 __all__ = ["RecordConfig", "Recorded", "record"]
 
 DATASET_DOC = f"{RECORDS}/dataset.json"
-# What may differ between the runs that fill one dataset: none of it shapes an episode's files.
-# What drove an episode (DART's noise, a DAgger round's policy and its share) is among it: a
-# dataset grows by DAgger's rounds, and each episode's record says what drove it.
-RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", "beta")
-DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
-# Settings added since the first recordings, as an episode recorded before them had them.
-LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0}
 
 
 def _clear_unrecorded(root: Path, recorded: set[int]) -> None:
@@ -78,14 +70,7 @@ def record(
     lands, with all its frames); `on_episode(episodes in the dataset)` before the first is
     filmed and after each lands. A DAgger round's learner (`config.policy`) is made by
     `policies(policy, env)`, in each worker."""
-    records, damaged = read_records(out)
-    check_folder(out, bool(records or damaged))  # before the scene is compiled
-    _check_same_recording(out, records, config)
-    damaged.update(damaged_episodes(out, records))
-    if damaged and not repair:
-        raise refusal(out, damaged)
-    forget(out, damaged)
-    records = {i: r for i, r in records.items() if i not in damaged}
+    records = _resumable(out, config, repair)  # before the scene is compiled
     env = make_env(config)
     try:
         check_cameras(config.cameras, env.config.robot_description)
@@ -126,6 +111,20 @@ def record(
         shutil.rmtree(out / STAGING, ignore_errors=True)
     failed = tuple(sorted(i for i, r in records.items() if not r["success"]))
     return Recorded(out, len(records), dataset.frames_before.total, dataset.added, failed)
+
+
+def _resumable(out: Path, config: RecordConfig, repair: bool) -> dict[int, dict[str, Any]]:
+    """The episodes `out` holds that this run keeps: ConfigError for a folder holding what no
+    recording of these settings wrote, or a damaged episode unless `repair` (it is forgotten,
+    to be recorded again)."""
+    records, damaged = read_records(out)
+    check_folder(out, bool(records or damaged))
+    check_same_recording(out, records, config)
+    damaged.update(damaged_episodes(out, records))
+    if damaged and not repair:
+        raise refusal(out, damaged)
+    forget(out, damaged)
+    return {i: r for i, r in records.items() if i not in damaged}
 
 
 class _Landing:
@@ -177,7 +176,7 @@ class _Landing:
             "failure": end.failure,
             "randomization": result["randomization"],
             "result": end.result,
-            "config": _settings(config),
+            "config": settings_of(config),
             "row": _jsonable(row),
         }
         if config.policy is not None:  # DAgger: what drove it, and how much of it
@@ -217,15 +216,6 @@ class _FramesBefore:
         self.total += length
 
 
-def _settings(config: RecordConfig) -> dict[str, Any]:
-    """The recording's settings as its episode records keep them (JSON's types); a DAgger
-    round's driver is kept apart (`driver`), so an expert's recording reads as ever."""
-    doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
-    for name in DRIVER:
-        del doc[name]
-    return doc
-
-
 def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
     """What pyramid_sim says of the recording beyond lerobot's keys (meta/pyramid_sim/)."""
     spec = env.plan.spec
@@ -244,45 +234,6 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "linger": config.linger,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
-
-
-def _check_same_recording(
-    out: Path, records: dict[int, dict[str, Any]], config: RecordConfig
-) -> None:
-    """ConfigError if `out` holds episodes recorded with other settings (the structure, its
-    size and build settings, the frame rate, cameras, image size, variation, randomized
-    parts, first seed, command limits, linger): each shapes the files, and a dataset is one
-    recording."""
-    wanted = _settings(config)
-    for index, rec in sorted(records.items()):
-        kept = {**LATER_SETTINGS, **rec.get("config", {})}
-        filmed = bool(kept.get("cameras")) or bool(config.cameras)  # or no image has a size
-        for name in wanted:
-            if name in RUN_ONLY or kept.get(name) == wanted[name]:
-                continue
-            if name == "image_size" and not filmed:
-                continue
-            setting, was, now = _difference(name, kept.get(name), wanted[name])
-            raise ConfigError(
-                f"out: {str(out)!r} holds episodes of another recording (episode {index} has "
-                f"{setting} {_short(was)}, this run {_short(now)}); accepted a new folder, or "
-                "the same recording's settings"
-            )
-
-
-def _difference(name: str, was: Any, now: Any) -> tuple[str, Any, Any]:
-    """The first setting under `name` where `was` and `now` differ (`options.config.seed`),
-    and its two values: a long setting cut short would show both the same."""
-    if isinstance(was, dict) and isinstance(now, dict):
-        for key in sorted(set(was) | set(now)):
-            if was.get(key) != now.get(key):
-                return _difference(f"{name}.{key}", was.get(key), now.get(key))
-    return name, was, now
-
-
-def _short(value: Any) -> str:
-    text = json.dumps(value)
-    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _write_text(path: Path, text: str) -> None:
