@@ -8,6 +8,7 @@ import numpy as np
 import pyramid_sim
 from pyramid_sim.learning.evaluation.perturbations import Perturbation, Perturber
 from pyramid_sim.learning.recording.episode import JointNoise, expert_episode, step_limit
+from pyramid_sim.learning.task.anchors import RADIUS
 from pyramid_sim.learning.task.spaces import environment_state
 
 ENV = pyramid_sim.ENV_ID
@@ -134,9 +135,10 @@ def test_the_goal_is_observed_and_moves_with_the_layout():
     env.close()
 
 
-def test_each_arms_next_target_is_observed_and_moves_on_once_its_brick_is_placed():
+def test_each_arms_next_target_is_observed_and_moves_on_once_its_hand_has_left_its_brick():
     """The build order and which arm places which brick are the task's: the observation says
-    which goal each arm works towards, and the next one once a brick rests on it."""
+    which goal each arm works towards, that one still while its hand lets its brick go and
+    rises off it (within 3 cm across the table), and the next one once the hand has left."""
     env = gymnasium.make(ENV, structure="pyramid-even", layers=2, variation="layout").unwrapped
     obs, _ = env.reset(seed=4)
     orders = {arm: sorted(env.plan.arm_order(arm)) for arm in ("left", "right")}
@@ -153,6 +155,12 @@ def test_each_arms_next_target_is_observed_and_moves_on_once_its_brick_is_placed
     arm = next(a for a, order in orders.items() if first in order)
     row = ("left", "right").index(arm)
     assert first == orders[arm][0]
+    np.testing.assert_array_equal(obs["next"][row], obs["goals"][first])  # over it yet
+    away = np.hypot(*(obs["tools"][row][:2] - obs["goals"][first][:2]))
+    while away < RADIUS:
+        obs, *_, truncated, info = env.step(env.expert_action())
+        assert not truncated and info["failure"] is None
+        away = np.hypot(*(obs["tools"][row][:2] - obs["goals"][first][:2]))
     np.testing.assert_array_equal(obs["next"][row], obs["goals"][orders[arm][1]])
     env.close()
 
