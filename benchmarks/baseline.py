@@ -323,6 +323,25 @@ def dagger(out: Path, recipe: Recipe, seconds: dict[str, float]) -> list[dict[st
     return added
 
 
+def round_scores(out: Path, recipe: Recipe) -> list[dict[str, Any]]:
+    """Each round's policy (round 0 the first training's) scored on `round_episodes` seeds
+    from the evaluation's first, into DIR/round_K: what each DAgger round gained. A round
+    scored before is read back."""
+    scored = []
+    for k in range(len(recipe.rounds) + 1):
+        folder = out / f"round_{k}"
+        done = folder / "evaluation.json"
+        if done.is_file():
+            scores = json.loads(done.read_text())
+        else:
+            scores = score(checkpoint(out, k), recipe, recipe.round_episodes, folder)
+        scored.append({"round": k, **{name: scores[name] for name in ROUND_SCORES}})
+    return scored
+
+
+ROUND_SCORES = ("episodes", "successes", "success_rate", "success_rate_95", "bricks_placed_mean")
+
+
 def _round_summary(demos: Path, episodes: range, round_: Round) -> dict[str, Any]:
     records = [
         json.loads((demos / "meta" / "pyramid_sim" / f"episode_{i:06d}.json").read_text())
@@ -369,6 +388,7 @@ def result(
     seconds: dict[str, float],
     demos: Path,
     rounds: list[dict[str, Any]],
+    gain: list[dict[str, Any]] | None = None,
 ) -> dict[str, Any]:
     """The row's result file: what the leaderboard shows and everything that made it."""
     records = [
@@ -385,7 +405,8 @@ def result(
         "action_mode": recipe.action_mode,
         "inputs": ["state", "environment_state", *recipe.cameras],
         "demos": {"recorded": len(expert), "built": sum(r["success"] for r in expert),
-                  "noise": recipe.noise, "dagger_rounds": rounds},
+                  "noise": recipe.noise},
+        "dagger": {"rounds": rounds, "scores": gain or []},
         "score": {k: evaluation[k] for k in ("episodes", "successes", "success_rate",
                                              "success_rate_95", "bricks_placed_mean",
                                              "failures", "protocol")},
@@ -409,6 +430,9 @@ def main(argv: list[str] | None = None) -> int:
         before = trained_before(out)
         seconds["train"] = before if before is not None else train(out, recipe)
         rounds = dagger(out, recipe, seconds)
+        start = time.perf_counter()
+        gain = round_scores(out, recipe) if recipe.round_episodes else []
+        seconds["round_scores"] = time.perf_counter() - start
         cpu = sorted(out.glob("train*_cpu_s.txt"))
         if cpu:
             seconds["train_cpu"] = sum(float(p.read_text()) for p in cpu)
@@ -426,7 +450,8 @@ def main(argv: list[str] | None = None) -> int:
     document = json.loads((out / "evaluation.json").read_text())
     document["baseline"] = {"recipe": asdict(recipe), "seconds": seconds}
     (out / "evaluation.json").write_text(json.dumps(document, indent=1) + "\n")
-    row = json.dumps(result(recipe, document, seconds, out / "demos", rounds), indent=1) + "\n"
+    row = json.dumps(result(recipe, document, seconds, out / "demos", rounds, gain), indent=1)
+    row += "\n"
     (out / "result.json").write_text(row)
     if results is not None:
         results.mkdir(parents=True, exist_ok=True)

@@ -21,6 +21,7 @@ REPO = Path(__file__).resolve().parents[1]
 RESULTS = REPO / "benchmarks" / "results"
 PAGE = REPO / "docs" / "benchmark.md"
 START, END = "<!-- leaderboard: start -->", "<!-- leaderboard: end -->"
+DAGGER_START, DAGGER_END = "<!-- dagger: start -->", "<!-- dagger: end -->"
 COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
            "training", "success (95 % interval)", "commit", "reproduce")  # fmt: skip
 TRACK_ORDER = {"keypose": 0, "continuous": 1}
@@ -43,7 +44,7 @@ def _task(row: dict[str, Any]) -> str:
 def _demos(row: dict[str, Any]) -> str:
     demos = row["demos"]
     text = f"{demos['built']} of {demos['recorded']} built"
-    rounds = demos.get("dagger_rounds") or []
+    rounds = (row.get("dagger") or {}).get("rounds") or []
     if rounds:
         text += f" + {sum(r['episodes'] for r in rounds)} DAgger ({len(rounds)} rounds)"
     return text
@@ -87,13 +88,42 @@ def table(rows: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def dagger_table(rows: list[dict[str, Any]]) -> str:
+    """Each row's DAgger rounds, one line a round: what it added and what its policy scored
+    (round 0 is the first training's), from the rows whose result files hold the scores."""
+    lines = ["| row | round | episodes added (beta, kept) | training steps | success | bricks placed |",
+             "| --- | --- | --- | --- | --- | --- |"]  # fmt: skip
+    for row in rows:
+        dagger = row.get("dagger") or {}
+        added = {k + 1: r for k, r in enumerate(dagger.get("rounds") or [])}
+        for scored in dagger.get("scores") or []:
+            k, low, high = scored["round"], *(100 * v for v in scored["success_rate_95"])
+            done = added.get(k)
+            what = (
+                f"{done['episodes']} (beta {done['beta']:g}, {done['kept']} kept)" if done else "-"
+            )
+            steps = done["steps"] if done else row["recipe"]["steps"]
+            lines.append(
+                f"| {row['row']} | {k} | {what} | {steps} | {scored['successes']}/"
+                f"{scored['episodes']} ({low:.0f}-{high:.0f} %) | "
+                f"{scored['bricks_placed_mean']:.2f} |"
+            )
+    return "\n".join(lines)
+
+
+def _between(text: str, start: str, end: str, table_text: str) -> str:
+    if start not in text or end not in text:
+        raise SystemExit(f"{PAGE}: the marks {start} and {end} are missing")
+    head, rest = text.split(start, 1)
+    _, tail = rest.split(end, 1)
+    return f"{head}{start}\n{table_text}\n{end}{tail}"
+
+
 def page_with(text: str, rows: list[dict[str, Any]]) -> str:
-    """The page `text` with its leaderboard (between the marks) written from `rows`."""
-    if START not in text or END not in text:
-        raise SystemExit(f"{PAGE}: the leaderboard's marks {START} and {END} are missing")
-    head, rest = text.split(START, 1)
-    _, tail = rest.split(END, 1)
-    return f"{head}{START}\n{table(rows)}\n{END}{tail}"
+    """The page `text` with its leaderboard and DAgger's rounds (each between its marks)
+    written from `rows`."""
+    text = _between(text, START, END, table(rows))
+    return _between(text, DAGGER_START, DAGGER_END, dagger_table(rows))
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -65,6 +65,7 @@ class Recipe:
     chunk: int = 20
     action_steps: int = 20
     rounds: tuple[Round, ...] = ()  # DAgger's, after the first training
+    round_episodes: int = 0  # each round's policy scored on this many seeds: DAgger's gain
     episodes: int = 100
     max_steps: int | None = None
     curve_episodes: int = 0

@@ -234,3 +234,25 @@ def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_scores_it(tmp_pa
     assert line[:3] == ["lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu"]
     assert line[3:14] == env and "--seed=100000" in line and "--eval.n_episodes=100" in line
     assert [a for a in baseline.env_flags(baseline.Recipe()) if "length" in a] == []
+
+
+def test_each_rounds_policy_is_scored_once_and_read_back_after(tmp_path, monkeypatch):
+    """DAgger's gain: round 0's policy and each round's scored on the same seeds; a round
+    scored before (its DIR/round_K/evaluation.json there) is not scored again."""
+    scored = []
+
+    def fake_score(checkpoint, recipe, episodes, out):
+        scored.append((checkpoint, episodes, out))
+        found = {"episodes": episodes, "successes": len(scored), "success_rate": 0.5,
+                 "success_rate_95": [0.3, 0.7], "bricks_placed_mean": 1.0}  # fmt: skip
+        out.mkdir(parents=True)
+        (out / "evaluation.json").write_text(json.dumps(found))
+        return found
+
+    monkeypatch.setattr(baseline, "score", fake_score)
+    recipe = baseline.Recipe(rounds=(baseline.Round(5, 0.5, 10),), round_episodes=7)
+    first = baseline.round_scores(tmp_path, recipe)
+    assert [s["round"] for s in first] == [0, 1] and [s["successes"] for s in first] == [1, 2]
+    assert scored[1][0] == tmp_path / "train_r1/checkpoints/last/pretrained_model"
+    assert {s[1] for s in scored} == {7}
+    assert baseline.round_scores(tmp_path, recipe) == first and len(scored) == 2

@@ -21,7 +21,9 @@ def _row(name, track, successes, cpu=600.0, rounds=()):
         "policy": "ACT (lerobot-train)",
         "action_mode": "anchored",
         "inputs": ["state", "environment_state"],
-        "demos": {"recorded": 200, "built": 150, "dagger_rounds": list(rounds)},
+        "demos": {"recorded": 200, "built": 150},
+        "dagger": {"rounds": list(rounds), "scores": []},
+        "recipe": {"steps": 9000},
         "score": {"episodes": 100, "successes": successes, "success_rate": successes / 100,
                   "success_rate_95": [0.4, 0.6], "bricks_placed_mean": 4.5},
         "training_steps": 9000,
@@ -59,9 +61,23 @@ def test_a_page_without_the_marks_is_refused(tmp_path):
         leaderboard.page_with("# no table here\n", [])
 
 
+def test_each_dagger_round_is_a_line_of_its_own_scores(tmp_path):
+    row = _row("b", "keypose", 40, rounds=[{"episodes": 100, "beta": 0.5, "steps": 2000,
+                                           "kept": 90}])  # fmt: skip
+    scored = {"episodes": 50, "success_rate_95": [0.2, 0.5], "bricks_placed_mean": 3.0}
+    row["dagger"]["scores"] = [{"round": 0, "successes": 15, **scored},
+                               {"round": 1, "successes": 22, **scored}]  # fmt: skip
+    lines = leaderboard.dagger_table([row, _row("c", "keypose", 55)]).splitlines()[2:]
+    assert lines == [
+        "| b | 0 | - | 9000 | 15/50 (20-50 %) | 3.00 |",
+        "| b | 1 | 100 (beta 0.5, 90 kept) | 2000 | 22/50 (20-50 %) | 3.00 |",
+    ]
+
+
 def test_a_page_out_of_step_with_the_results_fails_the_check(tmp_path, monkeypatch, capsys):
     page = tmp_path / "benchmark.md"
-    page.write_text(f"x\n{leaderboard.START}\n| stale |\n{leaderboard.END}\n")
+    marks = f"{leaderboard.DAGGER_START}\n{leaderboard.DAGGER_END}\n"
+    page.write_text(f"x\n{leaderboard.START}\n| stale |\n{leaderboard.END}\n{marks}")
     results = tmp_path / "results"
     results.mkdir()
     (results / "c.json").write_text(json.dumps(_row("c", "keypose", 55)))
