@@ -99,7 +99,7 @@ def test_baxters_waypoint_gains_and_sheds_its_speed_gently_the_pandas_at_once(ro
 
     env = _env(robot=robot)
     env.reset(seed=0)
-    hand, robot_description = env.ee, env.loop.config.robot_description
+    hand, robot_description = env.mode.control, env.loop.config.robot_description
     action = hand.hold(env.loop).astype(np.float32)
     action[1] -= 0.2  # left hand 20 cm towards the middle
     positions = [hand.ee.targets["left"].position]
