@@ -45,7 +45,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
 
-from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES  # noqa: E402
+from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES, RECORD_ACTION_MODES  # noqa: E402
 from pyramid_sim.cli.args import (  # noqa: E402
     EXIT_USAGE,
     Parser,
@@ -90,7 +90,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
                         help="s recorded after each build's success")  # fmt: skip
     parser.add_argument(
         "--action-mode",
-        choices=("joint", "relative", "waypoint", "anchored"),
+        choices=RECORD_ACTION_MODES,
         default=None,
         help="the action's form (default the recipe's)",
     )
@@ -138,7 +138,8 @@ def record(out: Path, recipe: Recipe, episodes: int | None = None, **driver: Any
         episodes=episodes or recipe.demos, seed=0, cameras=recipe.cameras,
         image_size=recipe.image_size, variation=recipe.variation,
         noise=0.0 if driver else recipe.noise, workers=recipe.workers,
-        action_mode=recipe.action_mode, fps=recipe.fps, linger=recipe.linger, **driver,
+        action_mode=recipe.action_mode, fps=recipe.fps, linger=recipe.linger,
+        brick_poses=recipe.brick_poses, **driver,
     )  # fmt: skip
     return time.perf_counter() - start
 
@@ -213,6 +214,7 @@ def env_flags(recipe: Recipe) -> list[str]:
         f"--env.layers={r.layers}", f"--env.variation={r.variation}", f"--env.fps={r.fps}",
         f"--env.action_mode={r.action_mode}", f"--env.cameras={json.dumps(list(r.cameras))}",
         f"--env.observation_height={height}", f"--env.observation_width={width}",
+        *([] if r.brick_poses else ["--env.brick_poses=false"]),
         *([f"--env.episode_length={r.max_steps}"] if r.max_steps else []),
     ]  # fmt: skip
 
@@ -403,7 +405,8 @@ def result(
         "robot": recipe.robot,
         "policy": "ACT (lerobot-train)",
         "action_mode": recipe.action_mode,
-        "inputs": ["state", "environment_state", *recipe.cameras],
+        "inputs": ["state", "environment_state" if recipe.brick_poses
+                   else "environment_state without the bricks' poses", *recipe.cameras],
         "demos": {"recorded": len(expert), "built": sum(r["success"] for r in expert),
                   "noise": recipe.noise},
         "dagger": {"rounds": rounds, "scores": gain or []},

@@ -35,6 +35,8 @@ class Recipe:
     cameras: tuple[str, ...] = ()
     # record's default: a default recording's checkpoint evaluates as is
     image_size: tuple[int, int] = RECORD_IMAGE_SIZE
+    # the bricks' poses observed (False: the policy sees the bricks through its cameras alone)
+    brick_poses: bool = True
     demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
     # s filmed after each build's success: ending there, a demonstration held a few frames
@@ -92,6 +94,18 @@ ROWS: dict[str, Recipe] = {
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
         Recipe(row="so101-2", robot="so101", noise=0.00125),
+        # the continuous track: each hand's bounded pose change from where it is measured,
+        # nothing copied from the observation into the action
+        Recipe(row="panda-2-delta", action_mode="delta"),
+        # the bricks seen through the overview camera alone (96 x 96), their poses unobserved:
+        # a step costs about five times the state policy's, so half the steps
+        Recipe(
+            row="panda-2-camera",
+            cameras=("overview",),
+            image_size=(96, 96),
+            brick_poses=False,
+            steps=2000,
+        ),  # fmt: skip
     )
 }
 QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,

@@ -46,6 +46,7 @@ class PyramidSimEnv(EnvConfig):
     observation_height: int = RECORD_IMAGE_SIZE[0]
     observation_width: int = RECORD_IMAGE_SIZE[1]
     action_mode: str = "joint"  # as `record --action-mode`: joint, relative, waypoint, anchored
+    brick_poses: bool = True  # as `record`: false for `--no-brick-poses`
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 
@@ -65,7 +66,13 @@ class PyramidSimEnv(EnvConfig):
             "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(motors,)),
             "environment_state": PolicyFeature(
                 type=FeatureType.ENV,
-                shape=(len(pyramid_sim.environment_names(bricks + SPARE_BRICKS, bricks)),),
+                shape=(
+                    len(
+                        pyramid_sim.environment_names(
+                            bricks + SPARE_BRICKS, bricks, self.brick_poses
+                        )
+                    ),
+                ),
             ),
         }
         self.features_map = {
@@ -97,5 +104,6 @@ class PyramidSimEnv(EnvConfig):
             "cameras": tuple(self.cameras),
             "image_size": (self.observation_height, self.observation_width),
             "action_mode": self.action_mode,
+            "brick_poses": self.brick_poses,
             "max_episode_steps": self.episode_length,
         }

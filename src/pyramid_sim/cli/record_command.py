@@ -92,6 +92,13 @@ def _add_run_args(p: argparse.ArgumentParser) -> None:
         "the frames their records claim) (default: refuse to resume over them)",
     )
     _add_dagger_args(p)
+    p.add_argument(
+        "--no-brick-poses",
+        action="store_true",
+        help="leave the bricks' poses (and which goals hold a brick, judged from them) out of "
+        "the observation: a policy that sees the bricks through its cameras alone (default: "
+        "observed)",
+    )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
@@ -160,6 +167,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             action_mode=args.action_mode,
             policy=args.policy,
             beta=args.beta,
+            brick_poses=not args.no_brick_poses,
             repair=args.repair,
             config=config,
             **sizes,

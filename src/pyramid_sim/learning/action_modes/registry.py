@@ -9,6 +9,7 @@ from ...choices import in_words
 from ...errors import ConfigError
 from ...robots import RobotDescription
 from .anchored import AnchoredMode
+from .delta import DeltaMode
 from .ee import EndEffectorMode
 from .joint import JointMode
 from .mode import ActionMode, ModeParts
@@ -32,6 +33,7 @@ MODES: dict[str, ModeClass] = {
     "ee": EndEffectorMode,
     "waypoint": WaypointMode,
     "anchored": AnchoredMode,
+    "delta": DeltaMode,
 }
 
 

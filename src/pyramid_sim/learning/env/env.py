@@ -49,7 +49,7 @@ from .episode_state import EpisodeState
 
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
        "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints",
-       "linger")  # fmt: skip
+       "linger", "brick_poses")  # fmt: skip
 
 
 class BuildEnv(gymnasium.Env):
@@ -81,6 +81,7 @@ class BuildEnv(gymnasium.Env):
         action_mode: str = "joint",
         footprints: bool = True,
         linger: float = 0.0,
+        brick_poses: bool = True,
         **options: Any,
     ) -> None:
         check_modes(action_mode, render_mode)
@@ -100,6 +101,7 @@ class BuildEnv(gymnasium.Env):
         self._camera_ids = lay.camera_names(robot)
         self.structure_spec, self.arms = spec, arms
         self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
+        self.brick_poses = bool(brick_poses)  # False: a camera policy's input (spaces.py)
         self.linger = LINGER.checked(linger)  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
         hands = mode_class(action_mode).hand_poses  # a joint mode's targets jitter, not these
@@ -113,7 +115,7 @@ class BuildEnv(gymnasium.Env):
         self.lerobot_units = lerobot_units(robot, self.layout.names)
         self._take_actions(action_mode)
         self.observation_space = observation_space(
-            self.layout, len(self.plan.bricks), self.cameras, self.image_size
+            self.layout, len(self.plan.bricks), self.cameras, self.image_size, self.brick_poses
         )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
@@ -266,6 +268,8 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "tools": tools,
         "held": loop.custody.holds(loop.data),
     }
+    if not env.brick_poses:  # what is judged from the bricks' poses goes with them
+        del observed["bricks"], observed["placed"]
     if env.cameras:
         observed["images"] = env.images(env.cameras)
     return observed

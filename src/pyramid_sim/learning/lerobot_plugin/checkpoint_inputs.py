@@ -63,10 +63,18 @@ def checkpoint_task(policy: str, given: Task) -> Task:
 
 
 def checkpoint_views(policy: str) -> dict[str, object]:
-    """The environment keywords (`cameras`, `image_size`) a checkpoint folder's policy needs,
-    or nothing for a policy that is not a checkpoint or sees no camera. ConfigError for images
-    of different sizes, which the environment cannot render at once."""
-    features = _features(Path(policy), "input_features")
+    """The environment keywords (`cameras`, `image_size`, and `brick_poses` where it saw the
+    bricks through its cameras alone) a checkpoint folder's policy needs, or nothing for a
+    policy that is not a checkpoint or sees no camera. ConfigError for images of different
+    sizes, which the environment cannot render at once."""
+    trained = read_training(Path(policy)) if Path(policy).is_dir() else None
+    blind = {"brick_poses": False} if trained is not None and not trained.brick_poses else {}
+    return {**_cameras(Path(policy)), **blind}
+
+
+def _cameras(policy: Path) -> dict[str, object]:
+    """The cameras a checkpoint's config.json says its policy sees, at their size."""
+    features = _features(policy, "input_features")
     views = {
         key.removeprefix(IMAGES): tuple(int(n) for n in feature["shape"][-2:])
         for key, feature in features.items()

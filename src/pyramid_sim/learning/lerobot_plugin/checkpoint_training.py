@@ -34,6 +34,7 @@ class Trained:
     variation: str
     fps: int
     action_mode: str
+    brick_poses: bool = True  # False: it saw the bricks through its cameras alone
 
 
 def read_training(folder: Path) -> Trained | None:
@@ -105,6 +106,7 @@ def _from_dataset(root: Path) -> Trained:
             doc["variation"],
             int(info["fps"]),
             doc.get("action_mode", OLD_ACTION_MODE),
+            bool(doc.get("brick_poses", True)),
         )
     except (KeyError, TypeError, ValueError, AttributeError) as err:
         raise ConfigError(
@@ -123,6 +125,7 @@ def _from_env(env: dict[str, Any], path: Path) -> Trained:
             env["variation"],
             int(env["fps"]),
             env["action_mode"],
+            bool(env.get("brick_poses", True)),
         )
     except (KeyError, TypeError, ValueError) as err:
         raise ConfigError(

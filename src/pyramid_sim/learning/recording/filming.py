@@ -34,6 +34,7 @@ def make_env(config: RecordConfig) -> BuildEnv:
         randomize=config.randomize,
         action_mode=config.action_mode,
         linger=config.linger,
+        brick_poses=config.brick_poses,
         **config.options,
     )
 
@@ -43,7 +44,7 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
     actions = env.action_units.names  # a hand's pose for the waypoint mode
     height, width = config.image_size
-    environment = environment_names(env.layout.bricks, len(env.plan.bricks))
+    environment = environment_names(env.layout.bricks, len(env.plan.bricks), config.brick_poses)
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
         "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),

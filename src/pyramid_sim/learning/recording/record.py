@@ -220,7 +220,7 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
     """What pyramid_sim says of the recording beyond lerobot's keys (meta/pyramid_sim/)."""
     spec = env.plan.spec
     named = camera_names(env.config.robot_description)
-    return {
+    doc = {
         "version": __version__,
         "lerobot_version": fmt.LEROBOT_VERSION,
         "structure": spec.name,
@@ -234,6 +234,9 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "linger": config.linger,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
+    if not config.brick_poses:  # said only where the bricks' poses are not observed
+        doc["brick_poses"] = False
+    return doc
 
 
 def _write_text(path: Path, text: str) -> None:

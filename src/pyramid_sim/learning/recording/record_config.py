@@ -51,6 +51,9 @@ class RecordConfig:
     # expert does not (the expert's share `beta`), the expert labelling every frame
     policy: str | None = None
     beta: float = 0.5
+    # the bricks' poses (and the goals' fill, judged from them) observed: False for a policy
+    # that sees the bricks through its cameras alone
+    brick_poses: bool = True
 
     def __post_init__(self) -> None:
         for name in ("episodes", "first_seed", "fps", "workers", "noise", "linger", "beta"):

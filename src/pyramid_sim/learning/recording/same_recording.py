@@ -18,8 +18,9 @@ from .record_config import RecordConfig
 # dataset grows by DAgger's rounds, and each episode's record says what drove it.
 RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", "beta")
 DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
-# Settings added since the first recordings, as an episode recorded before them had them.
-LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0}
+# Settings added since the first recordings, as an episode recorded before them had them (and
+# as a record leaves out the one whose default it keeps: the bricks' poses observed).
+LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0, "brick_poses": True}
 
 
 def settings_of(config: RecordConfig) -> dict[str, Any]:
@@ -28,6 +29,8 @@ def settings_of(config: RecordConfig) -> dict[str, Any]:
     doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
     for name in DRIVER:
         del doc[name]
+    if doc["brick_poses"]:  # the default, which records made before it held and say nothing of
+        del doc["brick_poses"]
     return doc
 
 
@@ -36,9 +39,9 @@ def check_same_recording(
 ) -> None:
     """ConfigError if `out` holds episodes recorded with other settings (the structure, its
     size and build settings, the frame rate, cameras, image size, variation, randomized
-    parts, first seed, command limits, linger): each shapes the files, and a dataset is one
-    recording."""
-    wanted = settings_of(config)
+    parts, first seed, command limits, linger, whether the bricks' poses are observed): each
+    shapes the files, and a dataset is one recording."""
+    wanted = {**LATER_SETTINGS, **settings_of(config)}
     for index, rec in sorted(records.items()):
         kept = {**LATER_SETTINGS, **rec.get("config", {})}
         filmed = bool(kept.get("cameras")) or bool(config.cameras)  # or no image has a size

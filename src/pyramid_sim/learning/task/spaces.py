@@ -17,7 +17,11 @@ from .observation_names import BRICK_FIELDS, GOAL_FIELDS, TOOL_FIELDS
 
 
 def observation_space(
-    layout: lay.Layout, targets: int, cameras: tuple[str, ...], image_size: tuple[int, int]
+    layout: lay.Layout,
+    targets: int,
+    cameras: tuple[str, ...],
+    image_size: tuple[int, int],
+    brick_poses: bool = True,
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
     rests when fed to the spawn spot), the goals (every target's pose,
@@ -25,7 +29,9 @@ def observation_space(
     order), each arm's next target (left first: which of the goals it works towards,
     anchors.next_targets), the tools (each hand's tool pose, left first: where the hands are,
     without a learner having to learn the arm's kinematics), whether each hand holds a brick
-    (physics/hold_sense.py), and each camera's image."""
+    (physics/hold_sense.py), and each camera's image. Without `brick_poses` (a policy that
+    sees the bricks through its cameras alone), neither the bricks' poses nor which goals hold
+    a brick, which is judged from them."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
@@ -36,6 +42,8 @@ def observation_space(
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
         "held": spaces.Box(0.0, 1.0, (len(ARMS),), dtype=np.float64),
     }
+    if not brick_poses:
+        del observed["bricks"], observed["placed"]
     if cameras:
         height, width = image_size
         observed["images"] = spaces.Dict(
@@ -48,7 +56,7 @@ def environment_state(observation: dict[str, Any]) -> np.ndarray:
     """An observation's entries beside the state and images as one float32 vector, in the
     order of `observation_names.environment_names`."""
     keys = ("bricks", "pick", "goals", "placed", "next", "tools", "held")
-    parts = [observation[k].ravel() for k in keys]
+    parts = [observation[k].ravel() for k in keys if k in observation]
     return np.concatenate(parts).astype(np.float32)
 
 
