@@ -168,5 +168,5 @@ def test_the_command_names_the_flags_a_checkpoint_that_does_not_say_needs(
 ):
     folder = checkpoint(tmp_path / "c", action=10, train=False)
     line = refused(["evaluate", "--policy", folder, "--out", str(tmp_path / "never")])
-    assert "accepted --action-mode waypoint (what its 10 actions fit) and --fps" in line
+    assert "accepted --action-mode waypoint or delta (what its 10 actions fit) and --fps" in line
     assert not (tmp_path / "never").exists()
