@@ -373,6 +373,17 @@ def machine() -> dict[str, Any]:
     return found
 
 
+def learner_versions() -> dict[str, str]:
+    """The versions of what trained the policy: lerobot and torch, where they import."""
+    found = {}
+    for name in ("lerobot", "torch"):
+        try:
+            found[name] = str(__import__(name).__version__)
+        except ImportError:
+            found[name] = "not installed"
+    return found
+
+
 def commit() -> str:
     """The commit the row ran at, `+dirty` if the checkout had changes."""
 
@@ -417,7 +428,7 @@ def result(
         "seconds": seconds,
         "machine": machine(),
         "commit": commit(),
-        "versions": evaluation["versions"],
+        "versions": {**evaluation["versions"], **learner_versions()},
         "recipe": asdict(recipe),
         "command": f"python benchmarks/baseline.py --row {recipe.row} --out DIR",
         "lerobot_eval": lerobot_eval_line(Path("DIR/CHECKPOINT"), Path("DIR"), recipe),
