@@ -139,7 +139,7 @@ def record(out: Path, recipe: Recipe, episodes: int | None = None, **driver: Any
         image_size=recipe.image_size, variation=recipe.variation,
         noise=0.0 if driver else recipe.noise, workers=recipe.workers,
         action_mode=recipe.action_mode, fps=recipe.fps, linger=recipe.linger,
-        brick_poses=recipe.brick_poses, **driver,
+        brick_poses=recipe.brick_poses, all_goals=recipe.all_goals, **driver,
     )  # fmt: skip
     return time.perf_counter() - start
 
@@ -215,6 +215,7 @@ def env_flags(recipe: Recipe) -> list[str]:
         f"--env.action_mode={r.action_mode}", f"--env.cameras={json.dumps(list(r.cameras))}",
         f"--env.observation_height={height}", f"--env.observation_width={width}",
         *([] if r.brick_poses else ["--env.brick_poses=false"]),
+        *([] if r.all_goals else ["--env.all_goals=false"]),
         *([f"--env.episode_length={r.max_steps}"] if r.max_steps else []),
     ]  # fmt: skip
 
@@ -270,11 +271,15 @@ def trained_before(out: Path, round_: int = 0) -> float | None:
     return seconds.total_seconds()
 
 
-def score(checkpoint: Path, recipe: Recipe, episodes: int, out: Path | None) -> dict[str, Any]:
+def score(
+    checkpoint: Path, recipe: Recipe, episodes: int, out: Path | None, layers: int | None = None
+) -> dict[str, Any]:
+    """`checkpoint` scored on `episodes` held-out seeds, at the recipe's size or `layers`."""
     import pyramid_sim
 
     evaluation = pyramid_sim.evaluate(
-        str(checkpoint), recipe.structure, out=out, robot=recipe.robot, layers=recipe.layers,
+        str(checkpoint), recipe.structure, out=out, robot=recipe.robot,
+        layers=layers or recipe.layers,
         variation=recipe.variation, episodes=episodes, max_steps=recipe.max_steps,
         action_mode=recipe.action_mode, fps=recipe.fps, workers=recipe.workers,
     )  # fmt: skip
@@ -395,6 +400,19 @@ def commit() -> str:
     return head + ("+dirty" if git("status", "--porcelain", "--", "src", "benchmarks") else "")
 
 
+def evaluated(out: Path, recipe: Recipe) -> Path:
+    """Where the row's evaluation goes: DIR, or DIR/layers_N where it scores the policy at
+    another size than its training's (a row of its own beside the training's)."""
+    return out if recipe.eval_layers is None else out / f"layers_{recipe.eval_layers}"
+
+
+def environment_inputs(recipe: Recipe) -> str:
+    """What of the environment state the row's policy sees, in words."""
+    left_out = [] if recipe.brick_poses else ["the bricks' poses"]
+    left_out += [] if recipe.all_goals else ["the goals but each arm's next"]
+    return "environment_state" + (f" without {' and '.join(left_out)}" if left_out else "")
+
+
 def result(
     recipe: Recipe,
     evaluation: dict[str, Any],
@@ -411,13 +429,13 @@ def result(
     return {
         "row": recipe.row,
         "track": recipe.track,
-        "task": {"structure": recipe.structure, "layers": recipe.layers,
-                 "bricks": evaluation["bricks"], "variation": recipe.variation},
+        "task": {"structure": recipe.structure, "layers": recipe.eval_layers or recipe.layers,
+                 "bricks": evaluation["bricks"], "variation": recipe.variation,
+                 "trained_layers": recipe.layers},
         "robot": recipe.robot,
         "policy": "ACT (lerobot-train)",
         "action_mode": recipe.action_mode,
-        "inputs": ["state", "environment_state" if recipe.brick_poses
-                   else "environment_state without the bricks' poses", *recipe.cameras],
+        "inputs": ["state", environment_inputs(recipe), *recipe.cameras],
         "demos": {"recorded": len(expert), "built": sum(r["success"] for r in expert),
                   "noise": recipe.noise},
         "dagger": {"rounds": rounds, "scores": gain or []},
@@ -453,7 +471,8 @@ def main(argv: list[str] | None = None) -> int:
         last = checkpoint(out, len(recipe.rounds))
         (out / "lerobot_eval.txt").write_text(lerobot_eval_line(last, out, recipe) + "\n")
         start = time.perf_counter()
-        scores = score(last, recipe, recipe.episodes, out)
+        scored = evaluated(out, recipe)
+        scores = score(last, recipe, recipe.episodes, scored, recipe.eval_layers)
         seconds["evaluate"] = time.perf_counter() - start
         if recipe.curve_episodes:
             curve(out, recipe)
@@ -461,9 +480,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"baseline: {error}", file=sys.stderr)
         (out / "failed.txt").write_text(f"{error}\n")
         return EXIT_USAGE if "accepted" in str(error) else 1
-    document = json.loads((out / "evaluation.json").read_text())
+    document = json.loads((scored / "evaluation.json").read_text())
     document["baseline"] = {"recipe": asdict(recipe), "seconds": seconds}
-    (out / "evaluation.json").write_text(json.dumps(document, indent=1) + "\n")
+    (scored / "evaluation.json").write_text(json.dumps(document, indent=1) + "\n")
     row = json.dumps(result(recipe, document, seconds, out / "demos", rounds, gain), indent=1)
     row += "\n"
     (out / "result.json").write_text(row)

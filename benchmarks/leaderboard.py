@@ -38,7 +38,9 @@ def load(folder: Path | None = None) -> list[dict[str, Any]]:
 def _task(row: dict[str, Any]) -> str:
     task = row["task"]
     variation = "" if task["variation"] == "layout" else f", {task['variation']}"
-    return f"{task['structure']} {task['layers']} ({task['bricks']} bricks{variation})"
+    trained = task.get("trained_layers", task["layers"])
+    learned = "" if trained == task["layers"] else f"; trained on {trained} layers"
+    return f"{task['structure']} {task['layers']} ({task['bricks']} bricks{variation}{learned})"
 
 
 def _demos(row: dict[str, Any]) -> str:

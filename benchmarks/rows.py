@@ -37,6 +37,8 @@ class Recipe:
     image_size: tuple[int, int] = RECORD_IMAGE_SIZE
     # the bricks' poses observed (False: the policy sees the bricks through its cameras alone)
     brick_poses: bool = True
+    # every goal observed (False: each arm's next alone, so a policy meets any size of the task)
+    all_goals: bool = True
     demos: int = 200  # DART's noise leaves about 4 in 5 built: about 160 to learn from
     noise: float = 0.005  # m: DART's offsets on each hand's executed x, y and z
     # s filmed after each build's success: ending there, a demonstration held a few frames
@@ -69,6 +71,9 @@ class Recipe:
     rounds: tuple[Round, ...] = ()  # DAgger's, after the first training
     round_episodes: int = 0  # each round's policy scored on this many seeds: DAgger's gain
     episodes: int = 100
+    # the structure's size the last policy is scored at, where not its training's: a policy
+    # that saw each arm's next goal alone (all_goals False) meets any size of the task
+    eval_layers: int | None = None
     max_steps: int | None = None
     curve_episodes: int = 0
     workers: int = 1  # episodes recorded and evaluated at once (the data and scores the same)
@@ -80,6 +85,18 @@ class Recipe:
         return ACTION_MODE_TRACKS[self.action_mode]
 
 
+# the six-brick pyramid from the task's goals and the arms alone: no brick's pose, and each
+# arm's next goal but no other, so the policy's input is the same at any size
+SIX_COMPACT = Recipe(
+    row="panda-6-compact",
+    layers=2,
+    demos=220,
+    noise=0.003,
+    steps=10000,
+    save_every=2000,
+    brick_poses=False,
+    all_goals=False,
+)
 ROWS: dict[str, Recipe] = {
     r.row: r
     for r in (
@@ -90,6 +107,10 @@ ROWS: dict[str, Recipe] = {
         Recipe(
             row="panda-6", layers=2, demos=220, noise=0.003, steps=10000, save_every=2000
         ),  # fmt: skip
+        SIX_COMPACT,
+        # DE NIRO's own 20-brick pyramid, by that policy (run it with panda-6-compact's --out:
+        # the demonstrations and the training are that row's, the scoring at four layers)
+        replace(SIX_COMPACT, row="panda-20", eval_layers=4, episodes=20),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's

@@ -170,3 +170,19 @@ def test_the_command_names_the_flags_a_checkpoint_that_does_not_say_needs(
     line = refused(["evaluate", "--policy", folder, "--out", str(tmp_path / "never")])
     assert "accepted --action-mode waypoint or delta (what its 10 actions fit) and --fps" in line
     assert not (tmp_path / "never").exists()
+
+
+def test_a_policy_that_saw_each_arms_next_goal_alone_meets_any_size(
+    tmp_path, checkpoint, recording
+):
+    """Its input is the same for every size of the structure: trained on six bricks, it is
+    evaluated on twenty as asked (and in its observation's variant); one that saw every goal
+    is refused another size."""
+    demos = recording(tmp_path / "demos", size={"layers": 2}, all_goals=False, brick_poses=False)
+    folder = checkpoint(tmp_path / "c", dataset=demos)
+    task = checkpoint_task(folder, Task(size={"layers": 4}))
+    assert task.size == {"layers": 4} and task.structure == "pyramid-even"
+    assert checkpoint_views(folder) == {"brick_poses": False, "all_goals": False}
+    seen = checkpoint(tmp_path / "s", dataset=recording(tmp_path / "all", size={"layers": 2}))
+    with pytest.raises(ConfigError, match="layers: 4 given, but the checkpoint was trained with 2"):
+        checkpoint_task(seen, Task(size={"layers": 4}))

@@ -156,7 +156,7 @@ def _prepare_gl(render: bool) -> None:
 # record's own keywords: not settings of the build
 RECORD_KEYWORDS = ("out", "episodes", "seed", "fps", "cameras", "image_size", "variation",
                    "randomize", "workers", "backend", "ray_address", "noise", "linger",
-                   "action_mode", "policy", "beta", "brick_poses", "on_frame", "on_episode",
+                   "action_mode", "policy", "beta", "brick_poses", "all_goals", "on_frame", "on_episode",
                    "arms", "repair")  # fmt: skip
 
 
@@ -181,6 +181,7 @@ def record(
     policy: str | None = None,
     beta: float = 0.5,
     brick_poses: bool = True,
+    all_goals: bool = True,
     on_frame: Any = None,
     on_episode: Any = None,
     repair: bool = False,
@@ -194,7 +195,8 @@ def record(
     each hand's x, y, z in the hand modes); a success goes on `linger` s more. With `policy` (as
     `evaluate` takes one), a DAgger round: it drives the 2 s spans the expert does not (a share
     `beta`), the expert labelling every frame. Without `brick_poses`, the bricks' poses (and
-    the goals' fill) are left out of the observation. Episodes in `out` are kept; a folder holding
+    the goals' fill) are left out of the observation; without `all_goals`, every goal but
+    each arm's next. Episodes in `out` are kept; a folder holding
     anything else, or a damaged episode (unless `repair`), is refused. `on_frame(episode,
     frames so far)` and `on_episode(episodes in the dataset)` hear progress; `options` as for
     `build`."""
@@ -209,7 +211,7 @@ def record(
     settings_ = RecordConfig(
         name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, cameras,
         image_size, variation, randomize, True, workers, backend, ray_address, noise,
-        action_mode, linger, policy, beta, bool(brick_poses),
+        action_mode, linger, policy, beta, bool(brick_poses), bool(all_goals),
     )  # fmt: skip
     _prepare_gl(render=bool(settings_.cameras))
     from .learning.evaluation.policies import make_policy

@@ -84,3 +84,30 @@ def test_a_checkpoint_trained_without_brick_poses_is_evaluated_without_them(
     train = {"dataset": {"root": str(blind_recording)}, "output_dir": str(tmp_path / "t")}
     (folder / "train_config.json").write_text(json.dumps(train))
     assert checkpoint_views(str(folder)) == {"brick_poses": False}
+
+
+def test_with_each_arms_next_goal_alone_every_size_is_observed_alike(tmp_path):
+    """`all_goals=False` (`record --next-goals-only`): neither every goal nor their fill, so
+    the observation's width is the same for the 2-, 6- and 20-brick pyramids; a recording
+    says so."""
+    widths = set()
+    for layers in (1, 2, 4):
+        env = gymnasium.make(
+            "pyramid_sim/Build-v0", structure="pyramid-even", layers=layers, fps=10,
+            action_mode="anchored", brick_poses=False, all_goals=False,
+        ).unwrapped  # fmt: skip
+        observation, _ = env.reset(seed=100000)
+        assert set(observation) == {"state", "pick", "next", "tools", "held"}
+        assert env.observation_space.contains(observation)
+        widths.add(len(environment_state(observation)))
+        env.close()
+    assert widths == {len(pyramid_sim.environment_names(9, 6, False, False))} == {22}
+    root = tmp_path / "d"
+    pyramid_sim.record(
+        "pyramid-even", out=root, layers=1, episodes=1, fps=10, cameras=(), linger=0.0,
+        action_mode="anchored", brick_poses=False, all_goals=False,
+    )  # fmt: skip
+    doc = json.loads((root / "meta/pyramid_sim/dataset.json").read_text())
+    assert doc["all_goals"] is False and doc["brick_poses"] is False
+    info = json.loads((root / "meta/info.json").read_text())
+    assert info["features"]["observation.environment_state"]["shape"] == [22]

@@ -47,6 +47,7 @@ class PyramidSimEnv(EnvConfig):
     observation_width: int = RECORD_IMAGE_SIZE[1]
     action_mode: str = "joint"  # as `record --action-mode`: joint, relative, waypoint, anchored
     brick_poses: bool = True  # as `record`: false for `--no-brick-poses`
+    all_goals: bool = True  # and false for `--next-goals-only`
     features: dict[str, PolicyFeature] = field(default_factory=dict)
     features_map: dict[str, str] = field(default_factory=dict)
 
@@ -69,7 +70,7 @@ class PyramidSimEnv(EnvConfig):
                 shape=(
                     len(
                         pyramid_sim.environment_names(
-                            bricks + SPARE_BRICKS, bricks, self.brick_poses
+                            bricks + SPARE_BRICKS, bricks, self.brick_poses, self.all_goals
                         )
                     ),
                 ),
@@ -105,5 +106,6 @@ class PyramidSimEnv(EnvConfig):
             "image_size": (self.observation_height, self.observation_width),
             "action_mode": self.action_mode,
             "brick_poses": self.brick_poses,
+            "all_goals": self.all_goals,
             "max_episode_steps": self.episode_length,
         }

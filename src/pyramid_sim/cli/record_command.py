@@ -99,6 +99,12 @@ def _add_run_args(p: argparse.ArgumentParser) -> None:
         "the observation: a policy that sees the bricks through its cameras alone (default: "
         "observed)",
     )
+    p.add_argument(
+        "--next-goals-only",
+        action="store_true",
+        help="leave every goal but each arm's next out of the observation, so its width is "
+        "the same whatever the structure's size (default: every goal observed)",
+    )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
@@ -168,6 +174,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             policy=args.policy,
             beta=args.beta,
             brick_poses=not args.no_brick_poses,
+            all_goals=not args.next_goals_only,
             repair=args.repair,
             config=config,
             **sizes,

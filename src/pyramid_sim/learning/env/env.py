@@ -43,13 +43,13 @@ from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
-from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
+from ..task.spaces import checked_action, goals, hidden, next_of, observation_space, pick, renderer
 from .control_steps import ControlSteps
 from .episode_state import EpisodeState
 
 OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
        "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints",
-       "linger", "brick_poses")  # fmt: skip
+       "linger", "brick_poses", "all_goals")  # fmt: skip
 
 
 class BuildEnv(gymnasium.Env):
@@ -82,6 +82,7 @@ class BuildEnv(gymnasium.Env):
         footprints: bool = True,
         linger: float = 0.0,
         brick_poses: bool = True,
+        all_goals: bool = True,
         **options: Any,
     ) -> None:
         check_modes(action_mode, render_mode)
@@ -101,7 +102,8 @@ class BuildEnv(gymnasium.Env):
         self._camera_ids = lay.camera_names(robot)
         self.structure_spec, self.arms = spec, arms
         self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
-        self.brick_poses = bool(brick_poses)  # False: a camera policy's input (spaces.py)
+        # what the observation leaves out (spaces.hidden): a camera policy's, a size's
+        self.brick_poses, self.all_goals = bool(brick_poses), bool(all_goals)
         self.linger = LINGER.checked(linger)  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
         hands = mode_class(action_mode).hand_poses  # a joint mode's targets jitter, not these
@@ -115,7 +117,12 @@ class BuildEnv(gymnasium.Env):
         self.lerobot_units = lerobot_units(robot, self.layout.names)
         self._take_actions(action_mode)
         self.observation_space = observation_space(
-            self.layout, len(self.plan.bricks), self.cameras, self.image_size, self.brick_poses
+            self.layout,
+            len(self.plan.bricks),
+            self.cameras,
+            self.image_size,
+            self.brick_poses,
+            self.all_goals,
         )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
@@ -268,8 +275,8 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "tools": tools,
         "held": loop.custody.holds(loop.data),
     }
-    if not env.brick_poses:  # what is judged from the bricks' poses goes with them
-        del observed["bricks"], observed["placed"]
+    for key in hidden(env.brick_poses, env.all_goals):
+        del observed[key]
     if env.cameras:
         observed["images"] = env.images(env.cameras)
     return observed

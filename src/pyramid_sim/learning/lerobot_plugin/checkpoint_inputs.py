@@ -63,13 +63,15 @@ def checkpoint_task(policy: str, given: Task) -> Task:
 
 
 def checkpoint_views(policy: str) -> dict[str, object]:
-    """The environment keywords (`cameras`, `image_size`, and `brick_poses` where it saw the
-    bricks through its cameras alone) a checkpoint folder's policy needs, or nothing for a
+    """The environment keywords (`cameras`, `image_size`, and `brick_poses` and `all_goals`
+    where its observation left those out) a checkpoint folder's policy needs, or nothing for a
     policy that is not a checkpoint or sees no camera. ConfigError for images of different
     sizes, which the environment cannot render at once."""
     trained = read_training(Path(policy)) if Path(policy).is_dir() else None
-    blind = {"brick_poses": False} if trained is not None and not trained.brick_poses else {}
-    return {**_cameras(Path(policy)), **blind}
+    hidden = {}
+    if trained is not None:  # what its observation left out, left out again
+        hidden = {k: False for k in ("brick_poses", "all_goals") if not getattr(trained, k)}
+    return {**_cameras(Path(policy)), **hidden}
 
 
 def _cameras(policy: Path) -> dict[str, object]:
@@ -113,12 +115,15 @@ def _filled(task: Task) -> Task:
 
 def _agreed(given: Task, trained: Trained) -> Task:
     """What is given, where it agrees with the training, and the training's where not
-    given; ConfigError naming both where they differ."""
+    given; ConfigError naming both where they differ. The variation may differ, and so may
+    the structure's size where the policy saw each arm's next goal alone (its input is the
+    same for every size: a policy trained on six bricks meets twenty)."""
     settled: dict[str, Any] = {"variation": given.variation or trained.variation}
     for name in ("robot", "structure", "fps", "action_mode"):
         settled[name] = _same(name, getattr(given, name), getattr(trained, name), trained)
     for name, value in given.size.items():
-        _same(name, value, trained.size.get(name), trained)
+        if trained.all_goals:
+            _same(name, value, trained.size.get(name), trained)
     return Task(size={**trained.size, **given.size}, **settled)
 
 

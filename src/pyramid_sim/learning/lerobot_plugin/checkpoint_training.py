@@ -35,6 +35,7 @@ class Trained:
     fps: int
     action_mode: str
     brick_poses: bool = True  # False: it saw the bricks through its cameras alone
+    all_goals: bool = True  # False: each arm's next goal alone
 
 
 def read_training(folder: Path) -> Trained | None:
@@ -107,6 +108,7 @@ def _from_dataset(root: Path) -> Trained:
             int(info["fps"]),
             doc.get("action_mode", OLD_ACTION_MODE),
             bool(doc.get("brick_poses", True)),
+            bool(doc.get("all_goals", True)),
         )
     except (KeyError, TypeError, ValueError, AttributeError) as err:
         raise ConfigError(
@@ -126,6 +128,7 @@ def _from_env(env: dict[str, Any], path: Path) -> Trained:
             int(env["fps"]),
             env["action_mode"],
             bool(env.get("brick_poses", True)),
+            bool(env.get("all_goals", True)),
         )
     except (KeyError, TypeError, ValueError) as err:
         raise ConfigError(

@@ -47,9 +47,9 @@ class LerobotView(gymnasium.Wrapper):
         self.action_space = spaces.Box(ends.min(0), ends.max(0), dtype=np.float32)
         inner = env.observation_space
         assert isinstance(inner, spaces.Dict)
-        targets = inner["goals"].shape
-        assert targets is not None
-        self.environment_names = environment_names(env.layout.bricks, targets[0], env.brick_poses)
+        self.environment_names = environment_names(
+            env.layout.bricks, len(env.plan.bricks), env.brick_poses, env.all_goals
+        )
         observed: dict[str, spaces.Space] = {
             "agent_pos": spaces.Box(-np.inf, np.inf, inner["state"].shape, dtype=np.float32),
             "environment_state": spaces.Box(

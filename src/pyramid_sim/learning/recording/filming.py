@@ -35,6 +35,7 @@ def make_env(config: RecordConfig) -> BuildEnv:
         action_mode=config.action_mode,
         linger=config.linger,
         brick_poses=config.brick_poses,
+        all_goals=config.all_goals,
         **config.options,
     )
 
@@ -44,7 +45,9 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
     actions = env.action_units.names  # a hand's pose for the waypoint mode
     height, width = config.image_size
-    environment = environment_names(env.layout.bricks, len(env.plan.bricks), config.brick_poses)
+    environment = environment_names(
+        env.layout.bricks, len(env.plan.bricks), config.brick_poses, config.all_goals
+    )
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
         "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),

@@ -234,8 +234,9 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "linger": config.linger,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
-    if not config.brick_poses:  # said only where the bricks' poses are not observed
-        doc["brick_poses"] = False
+    for hidden in ("brick_poses", "all_goals"):  # said only where the observation leaves out
+        if not getattr(config, hidden):
+            doc[hidden] = False
     return doc
 
 

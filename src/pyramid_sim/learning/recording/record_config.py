@@ -54,6 +54,7 @@ class RecordConfig:
     # the bricks' poses (and the goals' fill, judged from them) observed: False for a policy
     # that sees the bricks through its cameras alone
     brick_poses: bool = True
+    all_goals: bool = True  # every goal observed (False: each arm's next alone)
 
     def __post_init__(self) -> None:
         for name in ("episodes", "first_seed", "fps", "workers", "noise", "linger", "beta"):

@@ -20,7 +20,7 @@ RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", 
 DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
 # Settings added since the first recordings, as an episode recorded before them had them (and
 # as a record leaves out the one whose default it keeps: the bricks' poses observed).
-LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0, "brick_poses": True}
+LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0, "brick_poses": True, "all_goals": True}
 
 
 def settings_of(config: RecordConfig) -> dict[str, Any]:
@@ -29,8 +29,9 @@ def settings_of(config: RecordConfig) -> dict[str, Any]:
     doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
     for name in DRIVER:
         del doc[name]
-    if doc["brick_poses"]:  # the default, which records made before it held and say nothing of
-        del doc["brick_poses"]
+    for observed in ("brick_poses", "all_goals"):  # a default, which records made before held
+        if doc[observed]:
+            del doc[observed]
     return doc
 
 

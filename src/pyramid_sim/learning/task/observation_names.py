@@ -10,7 +10,9 @@ GOAL_FIELDS = ("x", "y", "z", "yaw")  # a target's position (m) and yaw (rad), w
 TOOL_FIELDS = ("x", "y", "z", "yaw")  # a hand's tool centre (m) and yaw (rad), world frame
 
 
-def environment_names(bricks: int, targets: int, brick_poses: bool = True) -> tuple[str, ...]:
+def environment_names(
+    bricks: int, targets: int, brick_poses: bool = True, all_goals: bool = True
+) -> tuple[str, ...]:
     """The entries of a recording's `observation.environment_state` and of lerobot's
     `environment_state`: every magazine brick's pose, the pick location's (where the next
     brick is fed: the spot moves from one episode to the next, and a brick's own entries span
@@ -18,13 +20,16 @@ def environment_names(bricks: int, targets: int, brick_poses: bool = True) -> tu
     target's in build order, whether each holds a brick, each arm's next target (left first),
     each hand's tool pose, left first (as a real arm reports it: its forward kinematics), and
     whether each hand holds a brick (as a real gripper reports it). Without `brick_poses`, no
-    brick's pose nor the goals' fill, which is judged from them (a camera policy's input)."""
+    brick's pose nor the goals' fill, which is judged from them (a camera policy's input).
+    Without `all_goals`, no goal but each arm's next: the same entries whatever the
+    structure's size."""
     seen = bricks if brick_poses else 0
-    filled = targets if brick_poses else 0
+    filled = targets if brick_poses and all_goals else 0
+    shown = targets if all_goals else 0
     return (
         tuple(f"brick{i}.{f}" for i in range(seen) for f in BRICK_FIELDS)
         + tuple(f"pick.{f}" for f in GOAL_FIELDS)
-        + tuple(f"goal{i}.{f}" for i in range(targets) for f in GOAL_FIELDS)
+        + tuple(f"goal{i}.{f}" for i in range(shown) for f in GOAL_FIELDS)
         + tuple(f"goal{i}.placed" for i in range(filled))
         + tuple(f"{arm}_next.{f}" for arm in ARMS for f in GOAL_FIELDS)
         + tuple(f"{arm}_tool.{f}" for arm in ARMS for f in TOOL_FIELDS)

@@ -22,6 +22,7 @@ def observation_space(
     cameras: tuple[str, ...],
     image_size: tuple[int, int],
     brick_poses: bool = True,
+    all_goals: bool = True,
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
     rests when fed to the spawn spot), the goals (every target's pose,
@@ -31,7 +32,8 @@ def observation_space(
     without a learner having to learn the arm's kinematics), whether each hand holds a brick
     (physics/hold_sense.py), and each camera's image. Without `brick_poses` (a policy that
     sees the bricks through its cameras alone), neither the bricks' poses nor which goals hold
-    a brick, which is judged from them."""
+    a brick, which is judged from them. Without `all_goals`, neither every goal nor their
+    fill: each arm's next target alone, so the space is the same for every structure's size."""
     observed: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
@@ -42,14 +44,23 @@ def observation_space(
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
         "held": spaces.Box(0.0, 1.0, (len(ARMS),), dtype=np.float64),
     }
-    if not brick_poses:
-        del observed["bricks"], observed["placed"]
+    for key in hidden(brick_poses, all_goals):
+        del observed[key]
     if cameras:
         height, width = image_size
         observed["images"] = spaces.Dict(
             {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in cameras}
         )
     return spaces.Dict(observed)
+
+
+def hidden(brick_poses: bool, all_goals: bool) -> tuple[str, ...]:
+    """The observation's entries a variant leaves out: the bricks' poses and the goals' fill
+    (judged from them), and every goal but the arms' next ones."""
+    keys = [] if brick_poses else ["bricks", "placed"]
+    if not all_goals:
+        keys += ["goals"] if "placed" in keys else ["goals", "placed"]
+    return tuple(keys)
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
