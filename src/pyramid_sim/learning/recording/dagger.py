@@ -51,5 +51,5 @@ def _call(method: Any, what: str, *args: Any) -> Any:
         return method(*args)
     except (ActionError, PolicyError):
         raise
-    except Exception as err:  # the user's code: one line naming it
+    except (Exception, SystemExit) as err:  # the user's code: one line naming it
         raise PolicyError(f"policy: {what} raised {type(err).__name__}: {err}") from err
