@@ -18,7 +18,7 @@ from ...physics.loop import BuildLoop
 from ...robots import RobotDescription
 from ..task.anchors import ANCHORS, FIELDS, anchor_poses, to_anchored, to_world
 from ..task.lerobot_units import own_units
-from .ee import hand_moved
+from .hand_mode import hand_moved
 from .mode import ExpertMove, ModeParts, Waypoints
 from .waypoint import REACH, WaypointMode
 
@@ -48,6 +48,8 @@ class AnchoredMode(WaypointMode):
     """The waypoint mode, each hand's waypoint given from one of its anchors: the frames of
     the observation the policy saw last (`see`)."""
 
+    fields = FIELDS
+
     def __init__(self, parts: ModeParts) -> None:
         super().__init__(parts)
         self.space = anchored_space(self.control.space)
@@ -56,10 +58,6 @@ class AnchoredMode(WaypointMode):
         self.moved = hand_moved(self.names, ("x", "y", "z"))
         self.clears = clear_frames(parts.config.robot_description)
         self.anchors = np.zeros((len(c.ARMS), len(ANCHORS), 4))  # each arm's, from `see`
-
-    @classmethod
-    def size(cls, robot: RobotDescription) -> int:
-        return len(FIELDS) * len(c.ARMS)
 
     def see(self, observation: dict[str, Any]) -> None:
         self.anchors = anchor_poses(observation["pick"], self.clears, observation["next"])

@@ -27,9 +27,8 @@ from gymnasium import spaces
 
 from ...physics import names as c
 from ...physics.loop import BuildLoop
-from ...robots import RobotDescription
 from ..task.lerobot_units import own_units
-from .ee import hand_moved
+from .hand_mode import hand_moved
 from .mode import ExpertMove, ModeParts, Waypoints
 from .waypoint import WaypointMode
 
@@ -66,6 +65,8 @@ class DeltaMode(WaypointMode):
     """The waypoint mode, each hand's waypoint given as a bounded change from its measured
     tool pose: the tools of the observation the policy saw last (`see`)."""
 
+    fields = FIELDS
+
     def __init__(self, parts: ModeParts) -> None:
         super().__init__(parts)
         motion, dt = parts.config.hand_motion, parts.steps * parts.config.motion.control_dt
@@ -80,10 +81,6 @@ class DeltaMode(WaypointMode):
         self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
         self.moved = hand_moved(self.names, ("dx", "dy", "dz"))
         self.tools = np.zeros((len(c.ARMS), 4))  # each hand's, from `see`
-
-    @classmethod
-    def size(cls, robot: RobotDescription) -> int:
-        return len(FIELDS) * len(c.ARMS)
 
     def see(self, observation: dict[str, Any]) -> None:
         self.tools = np.array(observation["tools"], dtype=np.float64)

@@ -12,7 +12,6 @@ brick lying on the table, so it cannot drive the hand into the table.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from gymnasium import spaces
@@ -21,11 +20,9 @@ from ...config import SimConfig
 from ...core.poses import Pose
 from ...physics import names as c
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JERK_TIME, hand_modes_share
 from ...physics.reach import plan_poses
-from ...robots import RobotDescription
 from ..task.layout import Layout
-from ..task.lerobot_units import own_units
+from .hand_mode import HandPoseMode
 from .mode import ExpertMove, ModeParts, Waypoints
 
 FIELDS = ("dx", "dy", "dz", "dyaw", "gripper")
@@ -148,45 +145,15 @@ def end_effector(config: SimConfig, layout: Layout, steps: int) -> EndEffectorCo
     )
 
 
-def hand_moved(names: tuple[str, ...], fields: tuple[str, ...]) -> np.ndarray:
-    """Which of a hand mode's entries (`names`, "arm/field") move an arm: its `fields`."""
-    return np.array([name.split("/")[-1] in fields for name in names])
-
-
-class EndEffectorMode:
+class EndEffectorMode(HandPoseMode):
     """Actions of each hand's tool-pose change and finger gap, through the build's own IK
     (`EndEffectorControl`), then the motion generator."""
 
-    moved_unit = "m"
-    hand_poses = True
+    fields = FIELDS
 
     def __init__(self, parts: ModeParts) -> None:
-        self.control = end_effector(parts.config, parts.layout, parts.steps)
-        self.space: spaces.Box = self.control.space
-        self.names = self.control.names
-        self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
-        self.moved = hand_moved(self.names, ("dx", "dy", "dz"))
-        self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
-        self.acceleration_share = hand_modes_share(parts.config.robot_description)
-
-    @classmethod
-    def size(cls, robot: RobotDescription) -> int:
-        return len(FIELDS) * len(c.ARMS)
-
-    def reset(self, loop: BuildLoop) -> None:
-        self.control.reset(loop)
-
-    def see(self, observation: dict[str, Any]) -> None:
-        return None
-
-    def target(self, action: np.ndarray, state: np.ndarray) -> np.ndarray:
-        return action
-
-    def command(self, loop: BuildLoop, target: np.ndarray, share: float) -> np.ndarray:
-        return self.control.command(loop, target)
-
-    def held(self, loop: BuildLoop, state: np.ndarray) -> np.ndarray:
-        return self.control.hold(loop).astype(np.float32)
+        control = end_effector(parts.config, parts.layout, parts.steps)
+        super().__init__(parts, control, ("dx", "dy", "dz"))
 
     def expert(self, move: ExpertMove) -> np.ndarray:
         """The builder's move while it moves; once it has stopped, stay where aimed."""

@@ -17,7 +17,6 @@ gap says open or closed, and the hand grips and releases as the scripted builder
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from gymnasium import spaces
@@ -27,12 +26,10 @@ from ...core.poses import Pose
 from ...core.primitives import StepKind
 from ...physics import names as c
 from ...physics.loop import BuildLoop
-from ...physics.motion_generator import JERK_TIME, hand_modes_share
-from ...robots import RobotDescription
 from ..task.layout import Layout
-from ..task.lerobot_units import own_units
-from .ee import EndEffectorControl, end_effector, hand_moved
+from .ee import EndEffectorControl, end_effector
 from .gripper_switch import GripperSwitch
+from .hand_mode import HandPoseMode
 from .mode import ExpertMove, ModeParts, Waypoints
 
 FIELDS = ("x", "y", "z", "yaw", "gripper")
@@ -156,40 +153,15 @@ def _float32(waypoint: np.ndarray) -> np.ndarray:
     return waypoint.astype(np.float32)
 
 
-class WaypointMode:
+class WaypointMode(HandPoseMode):
     """Actions of where each hand's tool centre goes and its finger gap, through the `ee`
     mode's IK (`WaypointControl`), then the motion generator."""
 
-    moved_unit = "m"
-    hand_poses = True
+    fields: tuple[str, ...] = FIELDS
 
     def __init__(self, parts: ModeParts) -> None:
-        self.control = waypoints(parts.config, parts.layout, parts.steps)
-        self.space: spaces.Box = self.control.space
-        self.names = self.control.names
-        self.units = own_units(self.names, parts.units.robot_type)  # metres and radians
-        self.moved = hand_moved(self.names, ("x", "y", "z"))
-        self.jerk_time = JERK_TIME  # behind the IK the generator follows it closely
-        self.acceleration_share = hand_modes_share(parts.config.robot_description)
-
-    @classmethod
-    def size(cls, robot: RobotDescription) -> int:
-        return len(FIELDS) * len(c.ARMS)
-
-    def reset(self, loop: BuildLoop) -> None:
-        self.control.reset(loop)
-
-    def see(self, observation: dict[str, Any]) -> None:
-        return None
-
-    def target(self, action: np.ndarray, state: np.ndarray) -> np.ndarray:
-        return action
-
-    def command(self, loop: BuildLoop, target: np.ndarray, share: float) -> np.ndarray:
-        return self.control.command(loop, target)
-
-    def held(self, loop: BuildLoop, state: np.ndarray) -> np.ndarray:
-        return self.control.hold(loop).astype(np.float32)
+        control = waypoints(parts.config, parts.layout, parts.steps)
+        super().__init__(parts, control, ("x", "y", "z"))
 
     def expert(self, move: ExpertMove) -> np.ndarray:
         """Where the builder's move ends, a waypoint that stays once the build is done."""
