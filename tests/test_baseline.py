@@ -13,6 +13,18 @@ import baseline  # noqa: E402
 from pyramid_sim.errors import PyramidSimError  # noqa: E402
 
 
+def _trainings(monkeypatch) -> list[list[str]]:
+    """The lerobot-train commands baseline.py runs, run by none: each ends at once, well."""
+    commands: list[list[str]] = []
+
+    def fake_run(command, **_):
+        commands.append(command)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    return commands
+
+
 def _records(root: Path, successes: list[bool]) -> None:
     folder = root / "demos" / "meta" / "pyramid_sim"
     folder.mkdir(parents=True)
@@ -41,13 +53,7 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
     mapping: the recipe asks for it (and can leave it out), and the child's CPU seconds are
     kept beside the log."""
     _records(tmp_path, [True])
-    commands = []
-
-    def fake_run(command, **_):
-        commands.append(command)
-        return type("Done", (), {"returncode": 0})()
-
-    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    commands = _trainings(monkeypatch)
     baseline.train(tmp_path, baseline.Recipe())
     baseline.train(tmp_path, baseline.Recipe(normalize_environment=False))
     wanted = [a for a in commands[0] if a.startswith("--policy.normalization_mapping=")]
@@ -175,13 +181,7 @@ def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
 
 def test_a_dagger_round_trains_on_from_the_last_rounds_policy(tmp_path, monkeypatch):
     _records(tmp_path, [True])
-    commands = []
-
-    def fake_run(command, **_):
-        commands.append(command)
-        return type("Done", (), {"returncode": 0})()
-
-    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    commands = _trainings(monkeypatch)
     baseline.train(tmp_path, baseline.Recipe(), 2, steps=123)
     command = commands[0]
     assert f"--policy.path={tmp_path / 'train_r1/checkpoints/last/pretrained_model'}" in command
@@ -215,13 +215,7 @@ def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_scores_it(tmp_pa
     import shlex
 
     _records(tmp_path, [True])
-    commands = []
-
-    def fake_run(command, **_):
-        commands.append(command)
-        return type("Done", (), {"returncode": 0})()
-
-    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    commands = _trainings(monkeypatch)
     recipe = baseline.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
     baseline.train(tmp_path, recipe)
     env = ["--env.type=pyramid_sim", "--env.robot=panda", "--env.task=pyramid-even",
