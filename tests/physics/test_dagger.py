@@ -11,7 +11,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
-from pyramid_sim.learning.recording.dagger import Mixer
+from pyramid_sim.learning.recording.dagger import JOINT_REACH, REACH, TURN, Mixer, bounded
 
 TASK = dict(layers=1, fps=10, cameras=(), action_mode="anchored", linger=0.0)
 
@@ -50,24 +50,41 @@ def test_a_round_whose_expert_drives_every_span_is_the_expert_recording(demos):
     assert "policy" not in record["config"] and _driver(demos / "expert", 0)[0] is None
 
 
-def test_the_learner_drives_its_share_and_the_expert_labels_what_it_reaches(demos):
-    """The `zero` learner holds the hands where they are in every span; the expert's labels at
-    those frames still say where its move goes (frames whose hands do not move, labels that
-    do), and the round is added to the expert's dataset, a second recording."""
+def test_a_learner_that_holds_still_is_pulled_along_the_experts_way_and_it_builds(demos):
+    """The `zero` learner drives every span and only asks to hold its hands still: pulled
+    back within 5 mm of the expert's waypoint each step, its fingers the expert's, the hands
+    go the expert's way a bound behind, the expert's bookkeeping stays the world's, and the
+    episode builds, every frame labelled by the expert; the round joins the expert's dataset."""
     root = demos / "expert"
     recorded = _record(root, 2, policy="zero", beta=0.0)  # the learner drives every span
-    assert recorded.added == 1 and recorded.episodes == 2
+    assert recorded.added == 1 and recorded.episodes == 2 and recorded.failed == ()
     driver, _ = _driver(root, 1)
     frames = _frames(root, 1)
     assert driver["learner_steps"] == len(frames["action"]) > 0
     info = json.loads((root / "meta/info.json").read_text())
     names = info["features"]["observation.environment_state"]["names"]
     tools = [names.index(f"{arm}_tool.{f}") for arm in ("left", "right") for f in "xyz"]
-    hands, action = frames["observation.environment_state"][:, tools], frames["action"]
-    assert np.abs(hands - hands[0]).max() < 0.005  # m: the hands were held
-    anchors = action[:, [0, 6]]  # each arm's anchored frame: the expert moved on
-    assert len({tuple(a) for a in anchors}) > 1
+    hands = frames["observation.environment_state"][:, tools]
+    assert np.abs(hands - hands[0]).max() > 0.1  # m: the hands went the expert's way
     assert not _driver(root, 0)[0]  # the expert's own episode says nothing of a driver
+
+
+def test_a_learners_hand_is_pulled_back_within_the_bound_its_fingers_the_experts():
+    class Waypoints:  # a mode whose actions are the waypoints themselves
+        moved_unit, moved = "m", np.array([True, True, True, False, False])
+
+        def waypoints(self, action):
+            return np.array(action, dtype=np.float64), lambda world: world
+
+    expert = np.array([0.5, 0.2, 0.3, 0.0, 0.08] * 2)
+    learner = expert + [0.02, -0.001, 0.0, 1.0, -0.08, 0.0, 0.0, -0.3, -0.07, 0.0]
+    pulled = bounded(Waypoints(), learner, expert)
+    np.testing.assert_allclose(pulled - expert, [REACH, -0.001, 0, TURN, 0, 0, 0, -REACH, -TURN, 0],
+                               atol=1e-7)  # fmt: skip
+    joints = type("Joints", (), {"moved_unit": "rad", "moved": np.array([True, False]),
+                                 "waypoints": lambda self, a: None})()  # fmt: skip
+    pulled = bounded(joints, np.array([1.0, 0.5]), np.array([0.0, 0.0]))
+    np.testing.assert_allclose(pulled, [JOINT_REACH, 0.0])
 
 
 def test_the_mixer_hands_whole_spans_to_the_learner_at_its_share():
@@ -80,7 +97,7 @@ def test_the_mixer_hands_whole_spans_to_the_learner_at_its_share():
         def act(self, observation):
             return np.ones(3, np.float32)
 
-    mixer = Mixer(Counting(), fps=10, seed=4, beta=0.25)
+    mixer = Mixer(Counting(), fps=10, seed=4, beta=0.25, bound=lambda learner, expert: learner)
     expert = np.zeros(3, np.float32)
     driven = [mixer({}, expert)[0] for _ in range(20 * 200)]
     spans = np.array(driven).reshape(200, 20)

@@ -7,13 +7,14 @@ from __future__ import annotations
 import shutil
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 from ..dataset import lerobot_format as fmt
 from ..env.env import BuildEnv
 from ..task.observation_names import environment_names
-from .dagger import Mixer
+from .dagger import Mixer, bounded
 from .episode import Frame, expert_episode
 from .record_config import RecordConfig
 from .staging import staging_folder
@@ -152,7 +153,9 @@ def film_episode(
 
     try:
         seed = config.first_seed + files.episode
-        mixer = None if learner is None else Mixer(learner, config.fps, seed, config.beta)
+        scale = env.config.robot_description.length_scale
+        bound = partial(bounded, env.mode, scale=scale)
+        mixer = None if learner is None else Mixer(learner, config.fps, seed, config.beta, bound)
         end = expert_episode(env, seed, config.cameras, keep, config.noise, mixer)
         return end, files.close()
     except BaseException:
