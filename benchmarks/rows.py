@@ -100,8 +100,16 @@ ROWS: dict[str, Recipe] = {
         # task's goals and the arms alone: no brick's pose, and each arm's next goal but no
         # other, so its input is the same at any size; half the demos and 4000 steps, to fit
         # beside the other rows on a 2-core machine
-        replace(SIX, row="panda-20", brick_poses=False, all_goals=False, demos=100,
-                steps=4000, eval_layers=4, episodes=20),  # fmt: skip
+        replace(
+            SIX,
+            row="panda-20",
+            brick_poses=False,
+            all_goals=False,
+            demos=100,
+            steps=4000,
+            eval_layers=4,
+            episodes=20,
+        ),  # fmt: skip
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's

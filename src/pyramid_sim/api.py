@@ -195,11 +195,10 @@ def record(
     each hand's x, y, z in the hand modes); a success goes on `linger` s more. With `policy` (as
     `evaluate` takes one), a DAgger round: it drives the 2 s spans the expert does not (a share
     `beta`), the expert labelling every frame. Without `brick_poses`, the bricks' poses (and
-    the goals' fill) are left out of the observation; without `all_goals`, every goal but
-    each arm's next. Episodes in `out` are kept; a folder holding
-    anything else, or a damaged episode (unless `repair`), is refused. `on_frame(episode,
-    frames so far)` and `on_episode(episodes in the dataset)` hear progress; `options` as for
-    `build`."""
+    the goals' fill) are left out of the observation; without `all_goals`, every goal but each
+    arm's next. Episodes in `out` are kept; a folder holding anything else, or a damaged
+    episode (unless `repair`), is refused. `on_frame(episode, frames so far)` and
+    `on_episode(episodes in the dataset)` hear progress; `options` as for `build`."""
     folder = _dataset_folder(old_order, out)
     config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
     for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):

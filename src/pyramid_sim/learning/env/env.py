@@ -31,6 +31,7 @@ from ...output.result import Tolerances
 from ...params import LINGER
 from ...physics.loop import BuildLoop
 from ...physics.motion_generator import arm_motion
+from ...robots import RobotDescription
 from ..action_modes.mode import ModeParts
 from ..action_modes.registry import make_mode, mode_class
 from ..expert.closure import expert_loop
@@ -95,11 +96,9 @@ class BuildEnv(gymnasium.Env):
         self.control_steps = lay.control_steps(fps, self.config.motion.control_dt)
         self.fps, self.dt = fps, 1.0 / fps
         self.metadata = {**self.metadata, "render_fps": fps}
-        self.cameras = lay.check_cameras(cameras, robot)
-        self.image_size = lay.check_image_size(image_size)
-        self.render_size = lay.check_image_size((height, width))
-        self.camera_name = lay.check_cameras((camera_name,), robot)[0]
-        self._camera_ids = lay.camera_names(robot)
+        self.cameras, self.image_size, self.render_size, self.camera_name, self._camera_ids = (
+            _views(robot, cameras, image_size, (height, width), camera_name)
+        )
         self.structure_spec, self.arms = spec, arms
         self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
         # what the observation leaves out (spaces.hidden): a camera policy's, a size's
@@ -117,13 +116,9 @@ class BuildEnv(gymnasium.Env):
         self.lerobot_units = lerobot_units(robot, self.layout.names)
         self._take_actions(action_mode)
         self.observation_space = observation_space(
-            self.layout,
-            len(self.plan.bricks),
-            self.cameras,
-            self.image_size,
-            self.brick_poses,
-            self.all_goals,
-        )
+            self.layout, len(self.plan.bricks), self.cameras, self.image_size,
+            self.brick_poses, self.all_goals,
+        )  # fmt: skip
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
@@ -214,8 +209,7 @@ class BuildEnv(gymnasium.Env):
     def close(self) -> None:
         """Close the renderers (the next picture makes new ones)."""
         for name in ("_renderer", "_eyes"):
-            renderer = getattr(self, name, None)
-            if renderer is not None:
+            if (renderer := getattr(self, name, None)) is not None:
                 renderer.close()
                 setattr(self, name, None)
 
@@ -259,6 +253,22 @@ class BuildEnv(gymnasium.Env):
     def ended(self) -> bool:
         """Whether this episode has ended (a step now needs a reset first)."""
         return self.episode.ended
+
+
+def _views(
+    robot: RobotDescription,
+    cameras: tuple[str, ...],
+    image_size: tuple[int, int],
+    render_size: tuple[int, int],
+    camera_name: str,
+) -> tuple[tuple[str, ...], tuple[int, int], tuple[int, int], str, dict[str, str]]:
+    """The policy's cameras and their image size, the film's size and camera, and the scene's
+    camera names, checked against the robot's scene."""
+    return (
+        lay.check_cameras(cameras, robot), lay.check_image_size(image_size),
+        lay.check_image_size(render_size), lay.check_cameras((camera_name,), robot)[0],
+        lay.camera_names(robot),
+    )  # fmt: skip
 
 
 def observe(env: BuildEnv) -> dict[str, Any]:
