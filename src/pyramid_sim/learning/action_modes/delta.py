@@ -34,6 +34,11 @@ from .waypoint import WaypointMode
 
 FIELDS = ("dx", "dy", "dz", "dyaw", "gripper")
 SHARE = 1.5  # of the hand's free speed (and its turn rate) over a step: a change's bound
+# s: the step the bound is taken over, at the least. The hand lags its target by about this
+# much travel whatever the rate, so at 25 steps a second a step's own travel held the target
+# back as 0.75 of a step did at 10 (the expert stalled to the time limit or braked past a
+# joint's torque on every seed, on every robot)
+SPAN = 0.1
 
 
 def to_waypoint(action: np.ndarray, tools: np.ndarray) -> np.ndarray:
@@ -69,8 +74,9 @@ class DeltaMode(WaypointMode):
 
     def __init__(self, parts: ModeParts) -> None:
         super().__init__(parts)
-        motion, dt = parts.config.hand_motion, parts.steps * parts.config.motion.control_dt
-        self.reach, self.turn = SHARE * motion.speed * dt, SHARE * motion.turn_rate * dt
+        motion = parts.config.hand_motion
+        span = max(parts.steps * parts.config.motion.control_dt, SPAN)
+        self.reach, self.turn = SHARE * motion.speed * span, SHARE * motion.turn_rate * span
         low, high = [], []
         for k in range(len(c.ARMS)):
             gap = 5 * k + 4
