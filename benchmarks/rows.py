@@ -96,20 +96,22 @@ ROWS: dict[str, Recipe] = {
         # ACT trained on them, then a DAgger round (the learner drives half the spans), each
         # round's policy scored on 50 seeds
         replace(SIX, rounds=(Round(100, 0.5, 3000),), round_episodes=50),
-        # DE NIRO's own 20-brick pyramid, by a policy trained on the six-brick one from the
-        # task's goals and the arms alone: no brick's pose, and each arm's next goal but no
-        # other, so its input is the same at any size; half the demos and 4000 steps, to fit
-        # beside the other rows on a 2-core machine
+        # DE NIRO's own 20-brick pyramid, by a policy trained on it: the task's goals and the
+        # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
+        # (3 mm left one of two 20-brick demonstrations built, the other at the step limit),
+        # 80 demonstrations recorded on two workers
         replace(
             SIX,
             row="panda-20",
+            layers=4,
             brick_poses=False,
             all_goals=False,
-            demos=100,
-            steps=4000,
-            eval_layers=4,
+            demos=80,
+            noise=0.002,
+            steps=10000,
+            save_every=2500,
             episodes=20,
-        ),  # fmt: skip
+        ),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
