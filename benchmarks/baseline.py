@@ -43,6 +43,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
+from families import LABELS, first_training  # noqa: E402
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
 
 from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES, RECORD_ACTION_MODES  # noqa: E402
@@ -62,7 +63,6 @@ from pyramid_sim.robots import PRESETS  # noqa: E402
 
 __all__ = ["ROWS", "Recipe", "Round", "main"]
 
-NORMALIZED = {kind: "MEAN_STD" for kind in ("VISUAL", "STATE", "ENV", "ACTION")}
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -168,18 +168,7 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
         raise PyramidSimError("demos: no recorded episode built; accepted a recording with one")
     episodes = ",".join(map(str, kept))
     if round_ == 0:
-        policy = [
-            "--policy.type=act",
-            f"--policy.dim_model={r.dim_model}", f"--policy.n_heads={r.heads}",
-            f"--policy.dim_feedforward={r.feedforward}",
-            f"--policy.n_encoder_layers={r.encoder_layers}",
-            f"--policy.n_decoder_layers={r.decoder_layers}", f"--policy.chunk_size={r.chunk}",
-            f"--policy.use_vae={str(r.vae).lower()}",
-            *([f"--policy.normalization_mapping={json.dumps(NORMALIZED)}"]
-              if r.normalize_environment else []),
-            f"--policy.n_action_steps={r.action_steps}",
-            "--policy.pretrained_backbone_weights=null",
-        ]  # fmt: skip
+        policy = first_training(r)
     else:  # the last round's weights and settings; the normalization from the data now
         policy = [f"--policy.path={checkpoint(out, round_ - 1)}"]
     command = [
@@ -433,7 +422,7 @@ def result(
                  "bricks": evaluation["bricks"], "variation": recipe.variation,
                  "trained_layers": recipe.layers},
         "robot": recipe.robot,
-        "policy": "ACT (lerobot-train)",
+        "policy": LABELS[recipe.policy],
         "action_mode": recipe.action_mode,
         "inputs": ["state", environment_inputs(recipe), *recipe.cameras],
         "demos": {"recorded": len(expert), "built": sum(r["success"] for r in expert),

@@ -28,6 +28,8 @@ class Recipe:
     training, DAgger's rounds and the evaluation."""
 
     row: str = "panda-2"
+    # the policy family lerobot-train trains: act or diffusion (benchmarks/families.py)
+    policy: str = "act"
     robot: str = DEFAULT_ROBOT
     structure: str = "pyramid-even"
     layers: int = 1
@@ -61,6 +63,11 @@ class Recipe:
     encoder_layers: int = 2
     decoder_layers: int = 1
     vae: bool = False  # its KL term fell to 0 in every run: a deterministic expert
+    # Diffusion Policy's (policy="diffusion"): observations it conditions on, its U-Net's
+    # widths, DDIM's denoising steps at run time; its horizon is `chunk`
+    obs_steps: int = 2
+    down_dims: tuple[int, ...] = (128, 256, 512)
+    inference_steps: int = 10
     # ACT's default normalizes state, images and actions but not the environment state (the
     # bricks, goals and hands): a policy trained so ignored them
     normalize_environment: bool = True
@@ -128,6 +135,18 @@ ROWS: dict[str, Recipe] = {
             brick_poses=False,
             steps=2000,
         ),  # fmt: skip
+        # a second policy family on the 2-brick keypose task: lerobot's Diffusion Policy sized
+        # for a CPU (docs/benchmark.md says how), trained on panda-2's demonstrations
+        Recipe(
+            row="panda-2-diffusion",
+            policy="diffusion",
+            chunk=32,
+            action_steps=20,
+            learning_rate=1e-4,
+            batch_size=64,
+            steps=8000,
+            save_every=2000,
+        ),
     )
 }
 QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
@@ -135,6 +154,12 @@ QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=
              episodes=2, max_steps=100, rounds=())  # fmt: skip
 
 
+# Diffusion Policy's horizon a multiple of its U-Net's downsampling (2 for two widths), and
+# room for the observations and the executed actions in it
+QUICK_DIFFUSION = dict(chunk=8, action_steps=4, down_dims=(16, 32), inference_steps=2)
+
+
 def quick(recipe: Recipe) -> Recipe:
     """A few of each, for CI's round trip: the row's task, a tiny policy."""
-    return replace(recipe, **QUICK)  # type: ignore[arg-type]
+    small = {**QUICK, **(QUICK_DIFFUSION if recipe.policy == "diffusion" else {})}
+    return replace(recipe, **small)  # type: ignore[arg-type]
