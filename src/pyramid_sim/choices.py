@@ -26,9 +26,9 @@ DEFAULT_VARIATION = "layout"
 # joint targets, each joint's change from where it is (relative), each hand's pose change (ee),
 # or the pose each hand goes to (waypoint), or that pose from the pick location, the arm's clear
 # pose or its next target (anchored), or each hand's bounded pose change from where it is
-# measured (delta); a recording writes all but ee. The last four are hand poses, turned into
-# joints by the IK.
-ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored", "delta")
+# measured (delta), or each hand's pose in the world bounded as a delta is (absolute); a
+# recording writes all but ee. The last five are hand poses, turned into joints by the IK.
+ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored", "delta", "absolute")
 # Each in a few words, for the command line's help.
 ACTION_MODE_WORDS = {
     "joint": "joint targets",
@@ -39,18 +39,19 @@ ACTION_MODE_WORDS = {
     "anchored": "anchored (that pose from the pick location, the arm's clear pose or its next "
     "target)",
     "delta": "delta (each hand's pose change from where it is measured, bounded)",
+    "absolute": "absolute (each hand's pose in the world, bounded as a delta is)",
 }
-RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored", "delta")
+RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored", "delta", "absolute")
 # The entries of each hand's action in the hand-pose modes (None: each joint's target or
 # change, and the gap), known without MuJoCo (the registry's classes say the same: a test
 # holds them equal), and the track a leaderboard reports each mode in: a keypose policy picks
 # each hand's pose and the simulator moves the arm between them, a continuous one commands
 # the arm every step, nothing in its action copied from the observation.
 ACTION_MODE_HAND_ENTRIES = {"joint": None, "relative": None, "ee": 5, "waypoint": 5, "anchored": 6,
-                            "delta": 5}  # fmt: skip
+                            "delta": 5, "absolute": 5}  # fmt: skip
 ACTION_MODE_TRACKS = {"joint": "continuous", "relative": "continuous", "ee": "continuous",
                       "waypoint": "keypose", "anchored": "keypose",
-                      "delta": "continuous"}  # fmt: skip
+                      "delta": "continuous", "absolute": "continuous"}  # fmt: skip
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin

@@ -22,7 +22,7 @@ def test_every_mode_name_has_its_class():
     assert set(ACTION_MODE_WORDS) == set(MODES)  # and their help
     assert set(RECORD_ACTION_MODES) <= set(MODES)
     with pytest.raises(
-        ConfigError, match="accepted joint, relative, ee, waypoint, anchored or delta"
+        ConfigError, match="accepted joint, relative, ee, waypoint, anchored, delta or absolute"
     ):
         mode_class("torque")
 
@@ -35,7 +35,7 @@ def test_each_mode_says_its_size(name):
     motors = sum(len(arm.joints) + 1 for arm in pair.arms.values())
     sizes = {mode: action_size(mode, pair) for mode in MODES}
     assert sizes == {"joint": motors, "relative": motors, "ee": 10, "waypoint": 10, "anchored": 12,
-                     "delta": 10}  # fmt: skip
+                     "delta": 10, "absolute": 10}  # fmt: skip
     # what the checkpoint reader and the leaderboard know of the modes without MuJoCo
     assert sizes == {mode: action_entries(name, mode) for mode in MODES}
     assert set(ACTION_MODE_TRACKS) == set(ACTION_MODE_HAND_ENTRIES) == set(MODES)

@@ -8,6 +8,7 @@ from typing import Protocol
 from ...choices import in_words
 from ...errors import ConfigError
 from ...robots import RobotDescription
+from .absolute import AbsoluteMode
 from .anchored import AnchoredMode
 from .delta import DeltaMode
 from .ee import EndEffectorMode
@@ -34,6 +35,7 @@ MODES: dict[str, ModeClass] = {
     "waypoint": WaypointMode,
     "anchored": AnchoredMode,
     "delta": DeltaMode,
+    "absolute": AbsoluteMode,
 }
 
 
@@ -47,8 +49,14 @@ def mode_class(name: str) -> ModeClass:
 # The modes a robot's expert has not been shown to build in, refused for it up front: each
 # robot's expert builds at `layout` in every other mode (tests/physics/test_holding_torque.py)
 UNBUILT_MODES = {
-    "so101": {"delta": "its expert ran to the time limit on seeds 100000-100001"},
-    "baxter": {"delta": "its expert braked past a joint's torque limit on seeds 100000-100001"},
+    "so101": {
+        mode: "its expert ran to the time limit on seeds 100000-100001"
+        for mode in ("delta", "absolute")
+    },
+    "baxter": {
+        mode: "its expert braked past a joint's torque limit on seeds 100000-100001"
+        for mode in ("delta", "absolute")
+    },
 }
 
 
