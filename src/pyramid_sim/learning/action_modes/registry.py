@@ -50,12 +50,12 @@ def mode_class(name: str) -> ModeClass:
 # robot's expert builds at `layout` in every other mode (tests/physics/test_holding_torque.py)
 UNBUILT_MODES = {
     "so101": {
-        mode: "its expert ran to the time limit on seeds 100000-100001"
-        for mode in ("delta", "absolute")
+        "delta": "its expert ran to the time limit on seeds 100000-100001",
+        "absolute": "delta's bound and controller, with which its expert ran to the time limit",
     },
     "baxter": {
-        mode: "its expert braked past a joint's torque limit on seeds 100000-100001"
-        for mode in ("delta", "absolute")
+        "delta": "its expert braked past a joint's torque limit on seeds 100000-100001",
+        "absolute": "delta's bound and controller, with which its expert braked past a torque",
     },
 }
 
