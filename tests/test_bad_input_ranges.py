@@ -74,6 +74,6 @@ def test_an_unknown_action_mode_is_refused_naming_every_mode():
     with pytest.raises(ConfigError) as refused:
         check_modes("torque", None)
     assert str(refused.value) == (
-        "action mode: unknown 'torque'; accepted joint, relative, ee, waypoint, anchored or delta"
+        "action mode: unknown 'torque'; accepted joint, relative, ee, waypoint, anchored, delta or absolute"
     )
     assert in_words(["a"]) == "a" and in_words([1, 2]) == "1 or 2"

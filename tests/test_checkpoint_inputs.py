@@ -111,7 +111,7 @@ def test_a_checkpoint_that_does_not_say_needs_its_mode_and_rate_given(tmp_path, 
 
 def test_an_so101_action_fits_three_modes_and_each_is_named(tmp_path, checkpoint):
     folder = checkpoint(tmp_path / "c", action=12, state=12, train=False)
-    with pytest.raises(ConfigError, match="--action-mode joint or relative or anchored"):
+    with pytest.raises(ConfigError, match="--action-mode joint, relative or anchored"):
         checkpoint_task(folder, Task(robot="so101"))
 
 
@@ -168,7 +168,10 @@ def test_the_command_names_the_flags_a_checkpoint_that_does_not_say_needs(
 ):
     folder = checkpoint(tmp_path / "c", action=10, train=False)
     line = refused(["evaluate", "--policy", folder, "--out", str(tmp_path / "never")])
-    assert "accepted --action-mode waypoint or delta (what its 10 actions fit) and --fps" in line
+    assert (
+        "accepted --action-mode waypoint, delta or absolute (what its 10 actions fit) and --fps"
+        in line
+    )
     assert not (tmp_path / "never").exists()
 
 

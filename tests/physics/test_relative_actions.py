@@ -106,7 +106,8 @@ def test_evaluate_scores_a_policy_in_its_action_mode(tmp_path):
     written = json.loads((tmp_path / "e/evaluation.json").read_text())
     assert written["task"]["action_mode"] == "relative" and written["successes"] == 1
     with pytest.raises(
-        pyramid_sim.ConfigError, match="accepted joint, relative, waypoint, anchored or delta"
+        pyramid_sim.ConfigError,
+        match="accepted joint, relative, waypoint, anchored, delta or absolute",
     ):
         pyramid_sim.record(
             "pyramid-even", out=tmp_path / "r", layers=1, cameras=(), action_mode="ee"

@@ -144,7 +144,7 @@ def _refuse_unknown(folder: Path, given: Task) -> None:
         width = _action_width(folder)
         fits = _fitting(given.robot or DEFAULT_ROBOT, width) if width else []
         missing.append(
-            f"--action-mode {' or '.join(fits)} (what its {width} actions fit)"
+            f"--action-mode {in_words(tuple(fits))} (what its {width} actions fit)"
             if fits
             else f"--action-mode ({in_words(RECORD_ACTION_MODES)}: its recording's)"
         )
