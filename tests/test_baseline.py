@@ -251,3 +251,52 @@ def test_each_rounds_policy_is_scored_once_and_read_back_after(tmp_path, monkeyp
     assert scored[1][0] == tmp_path / "train_r1/checkpoints/last/pretrained_model"
     assert {s[1] for s in scored} == {7}
     assert baseline.round_scores(tmp_path, recipe) == first and len(scored) == 2
+
+
+def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_path, monkeypatch):
+    """The family is the recipe's: Diffusion Policy's horizon is the chunk, its U-Net the
+    recipe's widths, DDIM with few steps at run time, and its windows start where a whole
+    horizon still fits; its actions, state and environment state scaled to their bounds."""
+    _records(tmp_path, [True])
+    commands = _trainings(monkeypatch)
+    recipe = baseline.ROWS["panda-2-diffusion"]
+    baseline.train(tmp_path, recipe)
+    flags = dict(a.split("=", 1) for a in commands[0] if a.startswith("--policy."))
+    assert flags["--policy.type"] == "diffusion" and flags["--policy.horizon"] == "32"
+    assert flags["--policy.noise_scheduler_type"] == "DDIM"
+    assert flags["--policy.num_inference_steps"] == "10"
+    assert json.loads(flags["--policy.down_dims"]) == [128, 256, 512]
+    # horizon 32 - 20 executed - 2 observed + 1
+    assert flags["--policy.drop_n_last_frames"] == "11"
+    assert json.loads(flags["--policy.normalization_mapping"])["ENV"] == "MIN_MAX"
+    assert not [a for a in commands[0] if a.startswith("--policy.chunk_size")]  # ACT's
+    monkeypatch.undo()  # the result file asks git for its commit
+    doc = baseline.result(recipe, _evaluation(), {}, tmp_path / "demos", [])
+    assert doc["policy"] == "Diffusion Policy (lerobot-train)"
+    assert (
+        baseline.result(baseline.Recipe(), _evaluation(), {}, tmp_path / "demos", [])["policy"]
+        == "ACT (lerobot-train)"
+    )
+
+
+def test_a_quick_diffusion_row_keeps_a_horizon_its_u_net_can_halve(tmp_path):
+    """--quick's tiny policy: two widths halve the horizon once, so it must be even, and the
+    executed and observed steps must fit in it (a window of none would train on nothing)."""
+    small = baseline.quick(baseline.ROWS["panda-2-diffusion"])
+    assert small.chunk % 2 ** (len(small.down_dims) - 1) == 0
+    assert small.chunk - small.action_steps - small.obs_steps + 1 >= 0
+    assert baseline.quick(baseline.ROWS["panda-2"]).chunk == 10  # ACT's as before
+
+
+def _evaluation() -> dict:
+    return {
+        "episodes": 1,
+        "successes": 1,
+        "success_rate": 1.0,
+        "success_rate_95": [0.2, 1.0],
+        "bricks_placed_mean": 2.0,
+        "failures": {},
+        "protocol": {},
+        "bricks": 2,
+        "versions": {},
+    }
