@@ -43,7 +43,7 @@ def act_flags(r: Recipe) -> list[str]:
 
 def diffusion_flags(r: Recipe) -> list[str]:
     """Diffusion Policy's, sized for a CPU: a U-Net of `down_dims` (lerobot's default is
-    512-1024-2048, 16 times the weights of 128-256-512), `chunk` actions predicted from
+    512-1024-2048), `chunk` actions predicted from
     `obs_steps` observations and `action_steps` of them executed, and DDIM's
     `inference_steps` denoising steps at run time where DDPM takes all 100."""
     normalized = DIFFUSION_NORMALIZED if r.normalize_environment else {

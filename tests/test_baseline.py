@@ -262,12 +262,12 @@ def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_pa
     recipe = baseline.ROWS["panda-2-diffusion"]
     baseline.train(tmp_path, recipe)
     flags = dict(a.split("=", 1) for a in commands[0] if a.startswith("--policy."))
-    assert flags["--policy.type"] == "diffusion" and flags["--policy.horizon"] == "32"
+    assert flags["--policy.type"] == "diffusion" and flags["--policy.horizon"] == "16"
     assert flags["--policy.noise_scheduler_type"] == "DDIM"
     assert flags["--policy.num_inference_steps"] == "10"
-    assert json.loads(flags["--policy.down_dims"]) == [128, 256, 512]
-    # horizon 32 - 20 executed - 2 observed + 1
-    assert flags["--policy.drop_n_last_frames"] == "11"
+    assert json.loads(flags["--policy.down_dims"]) == [64, 128, 256]
+    # horizon 16 - 8 executed - 2 observed + 1
+    assert flags["--policy.drop_n_last_frames"] == "7"
     assert json.loads(flags["--policy.normalization_mapping"])["ENV"] == "MIN_MAX"
     assert not [a for a in commands[0] if a.startswith("--policy.chunk_size")]  # ACT's
     monkeypatch.undo()  # the result file asks git for its commit
