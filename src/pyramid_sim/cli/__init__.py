@@ -22,6 +22,7 @@ from . import commands
 from .evaluate_command import add_evaluate_args, cmd_evaluate
 from .record_command import add_record_args, cmd_record
 from .sweep_args import add_sweep_args
+from .targets import add_overwrite_arg
 from .video_args import add_video_args
 
 EXIT_INTERRUPTED = 130  # as a shell reports a process ended by SIGINT
@@ -51,6 +52,7 @@ def make_parser() -> a.Parser:
     a.add_schedule_arg(build)
     a.add_out_args(build, Path("runs/latest"))
     add_video_args(build)
+    add_overwrite_arg(build, "a result.json, film or still")
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     a.add_structure_args(view)
     a.add_physics_args(view)
@@ -71,6 +73,7 @@ def make_parser() -> a.Parser:
         metavar="FILE",
         help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",
     )
+    add_overwrite_arg(scene, "a FILE")
     add_record_args(
         sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
     )
