@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from ..choices import ARM_CHOICES
-from ..errors import ConfigError, MachineError, PyramidSimError
+from ..errors import ConfigError, MachineError, PyramidSimError, Terminated
 from ..version import __version__
 from . import args as a
 from . import commands
@@ -101,7 +101,7 @@ def make_parser() -> a.Parser:
 
 
 def _exit_on_sigterm(signum: int, frame: object) -> NoReturn:
-    raise SystemExit(128 + signum)
+    raise Terminated(128 + signum)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
