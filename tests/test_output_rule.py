@@ -7,8 +7,8 @@ import json
 
 import pytest
 
-from pyramid_sim.output.claims import check_file, check_not_dataset
 from pyramid_sim.errors import ConfigError
+from pyramid_sim.output.claims import check_file, check_not_dataset
 
 MINE = b"the user's own file\n"
 
@@ -28,8 +28,13 @@ def test_evaluate_leaves_a_users_evaluation_json_untouched(tmp_path, refused):
 
 
 def test_evaluate_leaves_another_evaluations_scores_untouched(tmp_path, refused):
-    other = {"policy": "zero", "protocol": {"first_seed": 7}, "task": {}, "rows": [],
-             "episodes": 10}
+    other = {
+        "policy": "zero",
+        "protocol": {"first_seed": 7},
+        "task": {},
+        "rows": [],
+        "episodes": 10,
+    }
     path = tmp_path / "e/evaluation.json"
     path.parent.mkdir()
     path.write_text(json.dumps(other))
@@ -41,8 +46,17 @@ def test_evaluate_leaves_another_evaluations_scores_untouched(tmp_path, refused)
 def test_evaluate_leaves_a_film_of_the_users_untouched(tmp_path, refused):
     mine = _mine(tmp_path / "e/episode_100000.mp4")
     err = refused(
-        ["evaluate", "--policy", "zero", "--layers", "1", "--video", "1", "--out",
-         str(tmp_path / "e")]
+        [
+            "evaluate",
+            "--policy",
+            "zero",
+            "--layers",
+            "1",
+            "--video",
+            "1",
+            "--out",
+            str(tmp_path / "e"),
+        ]
     )
     assert f"out: '{mine}' already holds a file it did not write" in err
     assert mine.read_bytes() == MINE

@@ -6,8 +6,10 @@ file or with its weights cut short is refused in one line."""
 import json
 import struct
 
+import numpy as np
 import pytest
 
+from pyramid_sim.choices import ACTION_MODES
 from pyramid_sim.errors import ConfigError
 from pyramid_sim.learning.lerobot_plugin.lerobot_policy import (
     check_checkpoint_files,
@@ -67,3 +69,16 @@ def test_a_truncated_safetensors_is_named(tmp_path):
     assert safetensors_problem(path) == "is cut short (1 bytes, not even its header)"
     path.write_bytes(struct.pack("<Q", 2) + b"[]")
     assert "is not a safetensors file" in safetensors_problem(path)
+
+
+@pytest.mark.parametrize("mode", ACTION_MODES)
+def test_a_bool_action_is_refused_in_every_mode(mode):
+    from pyramid_sim.errors import ActionError
+    from pyramid_sim.learning.env.env import BuildEnv
+
+    env = BuildEnv("pyramid-even", layers=1, action_mode=mode, fps=10)
+    env.reset(seed=0)
+    with pytest.raises(ActionError, match="action: dtype bool is not a number; accepted float32"):
+        env.step(np.ones(env.action_space.shape, dtype=bool))
+    env.step(np.asarray(env.expert_action()))  # the episode goes on
+    env.close()
