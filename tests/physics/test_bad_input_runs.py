@@ -1,4 +1,4 @@
-"""Refusals of issue 61 that name what the user gave and what is accepted: delta's refusal for
+"""Refusals that name what the user gave and what is accepted: delta's refusal for
 a robot whose expert does not build in it lists only the modes `record` takes, a first seed
 whose last episode's seed passes 2**32 is named as given, and a checkpoint folder missing a
 file or with its weights cut short is refused in one line."""
