@@ -113,3 +113,19 @@ def test_the_rule_accepts_nothing_there_the_same_run_and_overwrite(tmp_path):
         check_file(tmp_path, "out", "build's result", overwrite=True)
     check_not_dataset(tmp_path)  # a folder with no dataset
     check_not_dataset(None)
+
+
+@pytest.mark.parametrize(
+    "argv, what",
+    [
+        (["build", "--layers", "1", "--video", "{data}/film.mp4", "--out", "{tmp}/b"], "mp4 path"),
+        (["scene", "--layers", "1", "--out", "{data}/scene.mjb"], "out"),
+    ],
+)
+def test_a_film_or_a_scene_is_not_written_into_a_dataset_either(tmp_path, refused, argv, what):
+    data = tmp_path / "data"
+    _mine(data / "meta/info.json")
+    given = [a.format(data=data, tmp=tmp_path) for a in argv]
+    err = refused(given)
+    assert f"{what}: '{data}' is a recorded dataset's folder" in err
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["data", "info.json", "meta"]

@@ -183,6 +183,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
+    check_not_dataset(args.out.parent)
     check_file(args.out, "out", "scene", overwrite=args.overwrite)
     if args.out.suffix.lower() == ".xml":
         from ..output.scene_files import check_mesh_folder

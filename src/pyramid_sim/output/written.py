@@ -56,6 +56,7 @@ def build_folders(out: Path | None, films: Films) -> list[tuple[Path, str]]:
     folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
     for folder, what in folders:
         check_writable_dir(folder, what)
+        check_not_dataset(folder, what)
     return folders
 
 
