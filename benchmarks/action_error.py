@@ -24,10 +24,14 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from baseline import commit  # noqa: E402
+from script_checks import lerobot_needed  # noqa: E402
 
-from pyramid_sim.cli.args import EXIT_USAGE, Parser, output_path  # noqa: E402
+from pyramid_sim.cli.args import Parser, output_path  # noqa: E402
+from pyramid_sim.cli.endings import ended  # noqa: E402
 from pyramid_sim.errors import PyramidSimError  # noqa: E402
-from pyramid_sim.output.files import write_json_atomic  # noqa: E402
+from pyramid_sim.output.claims import check_file  # noqa: E402
+from pyramid_sim.output.files import check_writable_dir, write_json_atomic  # noqa: E402
+from pyramid_sim.params import parse_whole  # noqa: E402
 
 DRIVERS = ("expert", "policy")
 
@@ -44,19 +48,38 @@ def parse(argv: list[str] | None) -> Any:
     parser.add_argument("--fps", type=int, default=10)
     parser.add_argument("--max-steps", type=int, default=400, help="per episode (default 400)")
     parser.add_argument("--out", type=output_path("out", folder=False), help="a new JSON file")
+    parser.add_argument("--overwrite", action="store_true", help="replace an --out file there")
     args = parser.parse_args(argv)
     try:
-        args.seed_list = [int(s) for s in args.seeds.split(",")]
+        args.seed_list = [parse_whole(s) for s in args.seeds.split(",")]
     except ValueError:
-        parser.error(f"seeds: {args.seeds!r}; accepted whole numbers separated by commas")
+        args.seed_list = []
+    if not args.seed_list or not all(0 <= s < 2**32 for s in args.seed_list):
+        parser.error(
+            f"seeds: {args.seeds!r}; accepted whole numbers 0 to 2**32 - 1 separated by commas"
+        )
     if args.policy == "expert":  # a second expert would step the episode's own expert's plan
         parser.error("policy: 'expert' gives the labels; accepted a lerobot checkpoint, zero, "
                      "random or module:factory")  # fmt: skip
     if not 1 <= args.max_steps <= 100000:
         parser.error(f"max steps: {args.max_steps}; accepted 1 to 100000")
-    if args.out is not None and (args.out.exists() or args.out.is_symlink()):
-        parser.error(f"out: '{args.out}' exists; accepted a new file (nothing is overwritten)")
+    try:
+        if args.out is not None:
+            check_writable_dir(args.out.parent)
+            check_file(args.out, "out", "measure", overwrite=args.overwrite, ours=_measured)
+        if Path(args.policy).is_dir():  # a checkpoint: lerobot is needed before anything runs
+            lerobot_needed(f"the checkpoint {args.policy!r}")
+    except PyramidSimError as err:
+        parser.error(str(err))
     return args
+
+
+def _measured(path: Path) -> bool:
+    """Whether `path` holds a measure of this script's (its drivers' errors)."""
+    try:
+        return "drivers" in json.loads(path.read_bytes())
+    except (OSError, ValueError, TypeError):
+        return False
 
 
 def make(args: Any) -> tuple[Any, Any]:
@@ -109,14 +132,13 @@ def measure(env: Any, policy: Any, driver: str, seeds: list[int], max_steps: int
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parse(argv)
+    return ended("benchmarks/action_error.py", lambda: _run(parse(argv)))
+
+
+def _run(args: Any) -> int:
     start = time.perf_counter()
-    try:
-        env, policy = make(args)
-        drivers = {d: measure(env, policy, d, args.seed_list, args.max_steps) for d in DRIVERS}
-    except PyramidSimError as error:
-        print(f"action_error: {error}", file=sys.stderr)
-        return EXIT_USAGE if "accepted" in str(error) else 1
+    env, policy = make(args)
+    drivers = {d: measure(env, policy, d, args.seed_list, args.max_steps) for d in DRIVERS}
     from pyramid_sim.learning.evaluation.evaluate import versions
 
     document = {

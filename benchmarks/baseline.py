@@ -45,6 +45,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
 from families import LABELS, first_training  # noqa: E402
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
+from script_checks import check_recipe, check_run_folder, lerobot_needed  # noqa: E402
 
 from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES, RECORD_ACTION_MODES  # noqa: E402
 from pyramid_sim.cli.args import (  # noqa: E402
@@ -57,13 +58,28 @@ from pyramid_sim.cli.args import (  # noqa: E402
     output_path,
     whole,
 )
-from pyramid_sim.errors import PyramidSimError  # noqa: E402
+from pyramid_sim.cli.endings import ended  # noqa: E402
+from pyramid_sim.errors import ConfigError, PyramidSimError  # noqa: E402
 from pyramid_sim.params import LINGER  # noqa: E402
 from pyramid_sim.robots import PRESETS  # noqa: E402
 
 __all__ = ["ROWS", "Recipe", "Round", "main"]
 
 REPO = Path(__file__).resolve().parents[1]
+# what a run writes in DIR (patterns): a folder holding anything else is refused
+RUN_NAMES = (
+    r"demos",
+    r"train(_r\d+)?",
+    r"train(_r\d+)?\.log",
+    r"train(_r\d+)?_cpu_s\.txt",
+    r"round_\d+",
+    r"layers_\d+",
+    r"lerobot_eval(\.txt)?",
+    r"evaluation\.json",
+    r"result\.json",
+    r"curve\.(json|png)",
+    r"failed\.txt",
+)
 
 
 def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
@@ -96,7 +112,7 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
     )
     parser.add_argument("--fps", type=one_of("fps", tuple(map(str, FPS_CHOICES))), default=None,
                         help="steps a second (default the recipe's)")  # fmt: skip
-    parser.add_argument("--rounds", type=whole("rounds", "0 to the row's"), default=None,
+    parser.add_argument("--rounds", type=whole("rounds", "0 to the row's rounds"), default=None,
                         help="DAgger's rounds run, of the row's (default all)")  # fmt: skip
     parser.add_argument("--episodes", type=whole("episodes"), default=None, help="evaluated")
     parser.add_argument("--workers", type=whole("workers"), default=1,
@@ -105,9 +121,17 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
         "--curve", type=whole("curve"), default=0, help="score every checkpoint on N seeds"
     )
     args = parser.parse_args(argv)
+    if args.quick and args.results is not None:  # its 4-step policy is no row
+        parser.error(
+            "results: a --quick run publishes no row; accepted --results without --quick, "
+            "or --quick alone"
+        )
+    if args.curve < 0:
+        parser.error(f"curve: {args.curve} is out of range; accepted 0 (no curve) or more seeds")
     recipe = replace(ROWS[args.row], curve_episodes=args.curve, workers=args.workers)
-    if args.quick:
+    if args.quick:  # its rounds' scores too, on the quick evaluation's seeds
         recipe = quick(recipe)
+        recipe = replace(recipe, round_episodes=min(recipe.round_episodes, recipe.episodes))
     given = {"robot": args.robot, "structure": args.structure, "layers": args.layers,
              "variation": args.variation, "steps": args.steps, "demos": args.demos,
              "noise": args.noise, "linger": args.linger, "episodes": args.episodes,
@@ -118,12 +142,19 @@ def parse(argv: list[str] | None) -> tuple[Path, Recipe, Path | None]:
              else tuple(c for c in args.cameras.split(",") if c)}  # fmt: skip
     recipe = replace(recipe, **{k: v for k, v in given.items() if v is not None})
     if args.rounds is not None:
-        if args.rounds > len(recipe.rounds):
-            parser.error(f"rounds: {args.rounds}; accepted 0 to the row's {len(recipe.rounds)}")
+        if not 0 <= args.rounds <= len(recipe.rounds):
+            parser.error(
+                f"rounds: {args.rounds} is out of range; accepted 0 to {len(recipe.rounds)}, "
+                f"the rounds of row {recipe.row}"
+            )
         recipe = replace(recipe, rounds=recipe.rounds[: args.rounds])
     for name in ("steps", "demos", "episodes", "workers"):
         if getattr(recipe, name) < 1:
             parser.error(f"{name}: {getattr(recipe, name)}; accepted 1 or more")
+    try:
+        check_run_folder(args.out, RUN_NAMES, "baseline.py")
+    except ConfigError as err:
+        parser.error(str(err))
     return args.out, recipe, args.results
 
 
@@ -444,7 +475,14 @@ def result(
 
 
 def main(argv: list[str] | None = None) -> int:
-    out, recipe, results = parse(argv)
+    """The row run end to end, or one line and its exit status (benchmarks/script_checks.py
+    checks all first: nothing is made for a bad flag)."""
+    return ended("benchmarks/baseline.py", lambda: _run(*parse(argv)))
+
+
+def _run(out: Path, recipe: Recipe, results: Path | None) -> int:
+    lerobot_needed("the baseline's training")  # before any recording
+    check_recipe(recipe)  # all the library would refuse midway, before anything is made
     try:
         out.mkdir(parents=True, exist_ok=True)
         seconds = {"record": record(out, recipe)}

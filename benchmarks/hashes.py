@@ -21,6 +21,13 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
+
+from pyramid_sim.cli.args import Parser, one_of, output_path
+from pyramid_sim.cli.endings import ended
+from pyramid_sim.errors import ConfigError
+from pyramid_sim.output.claims import check_file
+from pyramid_sim.output.files import check_writable_dir, write_json_atomic
 
 # each mode at its frame rate: the hand modes' 10 fps, the joint modes' 25
 MODES = (("joint", 25), ("relative", 25), ("ee", 10), ("waypoint", 10), ("anchored", 10))
@@ -32,6 +39,7 @@ RECORD = ("record --structure pyramid-even --layers 1 --episodes 2 --variation l
 RECORD_MODES = (("anchored", "--fps 10 --noise 0.005"), ("relative", "--fps 25 --noise 0.005"))
 BUILD = "build --structure pyramid-even --quiet --layers"
 BUILD_LAYERS = (2, 4)  # 4: the README's
+PARTS = ("env", "record", "build", "all")
 WALL = ("wall_time", "real_time")  # keys of wall-clock figures, not the physics'
 
 
@@ -120,12 +128,55 @@ def build_hash(layers: int) -> tuple[str, str]:
     return hashlib.sha256(text.encode()).hexdigest(), json.dumps(summary)
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("env", "record", "build", "all"), default="all")
-    parser.add_argument("--json", type=Path, help="write the fingerprints here")
+def parse(argv: list[str] | None) -> tuple[argparse.Namespace, dict[str, Any] | None]:
+    """The flags, and the kept fingerprints to compare with, every one checked before any
+    fingerprint is taken: a --json file already there is kept unless --overwrite (and it is
+    written only at the end, whole), a --compare file must be one --json wrote."""
+    parser = Parser(prog="benchmarks/hashes.py", description=__doc__.splitlines()[0])
+    parser.add_argument("--part", type=one_of("part", PARTS), default="all")
+    parser.add_argument(
+        "--json", type=output_path("json", folder=False), help="write the fingerprints here"
+    )
+    parser.add_argument("--overwrite", action="store_true", help="replace a --json file there")
     parser.add_argument("--compare", type=Path, help="fail where one differs from this file")
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
+    try:
+        if args.json is not None:
+            check_writable_dir(args.json.parent, "json")
+            check_file(
+                args.json,
+                "json",
+                "file of fingerprints",
+                overwrite=args.overwrite,
+                ours=lambda p: kept(p) is not None,
+            )
+        compared = None if args.compare is None else kept(args.compare)
+    except ConfigError as err:
+        parser.error(str(err))
+    if args.compare is not None and compared is None:
+        parser.error(
+            f"compare: {str(args.compare)!r} is not a file of fingerprints; accepted "
+            "a file `--json` wrote"
+        )
+    return args, compared
+
+
+def kept(path: Path) -> dict[str, Any] | None:
+    """The fingerprints a `--json` file holds, or None where it is not one (missing among)."""
+    try:
+        found = json.loads(path.read_bytes())
+    except (OSError, ValueError):
+        return None
+    if isinstance(found, dict) and all(isinstance(v, dict) for v in found.values()):
+        return found
+    return None
+
+
+def main(argv: list[str] | None = None) -> int:
+    return ended("benchmarks/hashes.py", lambda: _run(*parse(argv)))
+
+
+def _run(args: argparse.Namespace, compared: dict[str, Any] | None) -> int:
     found: dict[str, dict[str, str]] = {}
     if args.part in ("env", "all"):
         for mode, fps in MODES:
@@ -148,10 +199,9 @@ def main() -> int:
             found[f"build pyramid-even {layers}"] = {"sha256": digest, "ends": summary}
             print(f"build pyramid-even {layers}       {digest[:16]}  {summary}", flush=True)
     if args.json is not None:
-        args.json.write_text(json.dumps(found, indent=1) + "\n")
-    if args.compare is not None:
-        kept = json.loads(args.compare.read_text())
-        differ = [k for k in found if kept.get(k, {}).get("sha256") != found[k]["sha256"]]
+        write_json_atomic(args.json, found)
+    if compared is not None:
+        differ = [k for k in found if compared.get(k, {}).get("sha256") != found[k]["sha256"]]
         print("equal" if not differ else f"DIFFER: {', '.join(differ)}")
         return 1 if differ else 0
     return 0

@@ -17,6 +17,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from pyramid_sim.cli.args import Parser
+from pyramid_sim.cli.endings import ended
+from pyramid_sim.errors import ConfigError
+from pyramid_sim.output.files import write_atomic
+
 REPO = Path(__file__).resolve().parents[1]
 RESULTS = REPO / "benchmarks" / "results"
 PAGE = REPO / "docs" / "benchmark.md"
@@ -28,11 +33,44 @@ TRACK_ORDER = {"keypose": 0, "continuous": 1}
 
 
 def load(folder: Path | None = None) -> list[dict[str, Any]]:
-    """The result files (of benchmarks/results/ by default), in the table's order."""
-    found = sorted((folder or RESULTS).glob("*.json"))
-    rows = [json.loads(p.read_text()) for p in found]
-    return sorted(rows, key=lambda r: (TRACK_ORDER.get(r["track"], 9), -r["score"]["success_rate"],
-                                       r["row"]))  # fmt: skip
+    """The result files (of benchmarks/results/ by default), in the table's order; ConfigError
+    naming the first that is not a row's result file (each is read and its cells made here,
+    before the page is touched)."""
+    rows = [_read(path) for path in sorted((folder or RESULTS).glob("*.json"))]
+    return sorted(rows, key=_order)
+
+
+def _order(row: dict[str, Any]) -> tuple[int, float, str]:
+    return TRACK_ORDER[row["track"]], -float(row["score"]["success_rate"]), str(row["row"])
+
+
+def _read(path: Path) -> dict[str, Any]:
+    """`path`'s row, every cell of it made once to prove it can be; ConfigError otherwise."""
+    accepted = "accepted a result file benchmarks/baseline.py --results wrote"
+    try:
+        row = json.loads(path.read_bytes())
+        if not isinstance(row, dict):
+            raise TypeError(f"a JSON {type(row).__name__}, not an object")
+        if row.get("track") not in TRACK_ORDER:
+            raise ValueError(f"its track {row.get('track')!r} is not one of {tuple(TRACK_ORDER)}")
+        if not isinstance(row["score"]["success_rate"], (int, float)):
+            raise TypeError(f"its success rate {row['score']['success_rate']!r} is no number")
+        _order(row)
+        table([row])
+        dagger_table([row])
+    except IsADirectoryError:
+        raise ConfigError(f"results: {str(path)!r} is a folder; {accepted}") from None
+    except (OSError, ValueError, TypeError, KeyError, IndexError, AttributeError) as err:
+        what = f"lacks {err}" if isinstance(err, KeyError) else str(err)
+        raise ConfigError(
+            f"results: {str(path)!r} is not a row's result ({what}); {accepted}"
+        ) from None
+    if row["row"] != path.stem:  # a copy under another name would be a second row
+        raise ConfigError(
+            f"results: {str(path)!r} holds the row {row['row']!r}, not {path.stem!r}; "
+            f"accepted {row['row']}.json, as baseline.py names it"
+        )
+    return row
 
 
 def _task(row: dict[str, Any]) -> str:
@@ -129,18 +167,29 @@ def page_with(text: str, rows: list[dict[str, Any]]) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = sys.argv[1:] if argv is None else argv
+    return ended("benchmarks/leaderboard.py", lambda: _run(argv))
+
+
+def _run(argv: list[str] | None) -> int:
+    parser = Parser(prog="benchmarks/leaderboard.py", description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--check",
+        action="store_true",
+        help="only say whether the page holds the table (exit 1 if not)",
+    )
+    args, unknown = parser.parse_known_args(argv)
+    if unknown:
+        parser.error(
+            f"{' '.join(unknown)!r} is not a flag of this script; accepted --check, or none"
+        )
     text = PAGE.read_text()
     wanted = page_with(text, load())
-    if args == ["--check"]:
+    if args.check:
         if wanted != text:
             print(f"{PAGE} does not hold the results' leaderboard: run {__file__}")
             return 1
         return 0
-    if args:
-        print("usage: python benchmarks/leaderboard.py [--check]", file=sys.stderr)
-        return 2
-    PAGE.write_text(wanted)
+    write_atomic(PAGE, lambda tmp: tmp.write_text(wanted))
     return 0
 
 

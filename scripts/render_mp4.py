@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Render a whole build to MP4 headless (EGL, else OSMesa): `pyramid-sim build --video` with
 its own default folder, runs/render/, so it never writes over the README's main command's
-video. Any `pyramid-sim build` option may follow, e.g. --camera front --shadows."""
+video. Any `pyramid-sim build` option may follow, e.g. --camera front --shadows; a film already
+there is kept unless it is the same build's or --overwrite is given (as `build` keeps it)."""
 
 import sys
 from pathlib import Path
@@ -26,7 +27,5 @@ def build_args(args: list[str]) -> tuple[list[str], Path | None]:
 
 if __name__ == "__main__":
     argv = sys.argv[1:]
-    command, video = build_args(argv)
-    if video is not None and not {"-h", "--help"} & set(argv) and video.exists():
-        print(f"render_mp4.py: {video} exists and will be replaced", file=sys.stderr)
+    command, _ = build_args(argv)
     sys.exit(main(command))

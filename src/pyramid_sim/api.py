@@ -93,7 +93,7 @@ def build(
     if video is not None:
         check_film(vc, config)
     films = written.films(vc, video, snapshot)
-    folders = written.build_folders(written.out_folder(out), films)
+    folders = written.build_folders(written.results_folder(out), films)
     prepare, run_build = _physics(render=bool(films))
     plan = prepare(spec, config, arms)
     with written.held(folders):
@@ -272,7 +272,7 @@ def evaluate(
     from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
 
     callback_argument(on_episode, "on_episode")
-    folder = written.out_folder(out)
+    folder = written.results_folder(out)
     policy = check_spec(policy)
     options = dict(options)
     sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}

@@ -25,3 +25,9 @@ class UnreachableError(PyramidSimError):
 class MachineError(PyramidSimError):
     """This machine lacks what a request needs (a headless OpenGL backend, Ray, a display):
     nothing in the input is wrong. Raised before any physics runs; the message names the fix."""
+
+
+class Terminated(SystemExit):
+    """Not an error: the run was sent SIGTERM, and ends with exit status 128 + 15. Raised from
+    the command line's handler wherever the run is, a policy's code among the places: that
+    code is not to blame for it."""

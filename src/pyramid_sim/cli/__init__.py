@@ -6,25 +6,20 @@ Every bad input ends in one line on stderr and exit status 2, before anything is
 
 from __future__ import annotations
 
-import ctypes
-import signal
 import sys
-import threading
 from collections.abc import Sequence
 from pathlib import Path
-from typing import NoReturn
 
 from ..choices import ARM_CHOICES
-from ..errors import ConfigError, MachineError, PyramidSimError
 from ..version import __version__
 from . import args as a
 from . import commands
+from .endings import ended
 from .evaluate_command import add_evaluate_args, cmd_evaluate
 from .record_command import add_record_args, cmd_record
 from .sweep_args import add_sweep_args
+from .targets import add_overwrite_arg
 from .video_args import add_video_args
-
-EXIT_INTERRUPTED = 130  # as a shell reports a process ended by SIGINT
 
 COMMANDS = {
     "plan": commands.cmd_plan,
@@ -51,6 +46,7 @@ def make_parser() -> a.Parser:
     a.add_schedule_arg(build)
     a.add_out_args(build, Path("runs/latest"))
     add_video_args(build)
+    add_overwrite_arg(build, "a result.json, film or still")
     view = sub.add_parser("view", help="watch the build live in MuJoCo's viewer (needs a display)")
     a.add_structure_args(view)
     a.add_physics_args(view)
@@ -71,6 +67,7 @@ def make_parser() -> a.Parser:
         metavar="FILE",
         help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",
     )
+    add_overwrite_arg(scene, "a FILE")
     add_record_args(
         sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
     )
@@ -97,43 +94,13 @@ def make_parser() -> a.Parser:
     return parser
 
 
-def _exit_on_sigterm(signum: int, frame: object) -> NoReturn:
-    raise SystemExit(128 + signum)
-
-
 def main(argv: Sequence[str] | None = None) -> int:
-    # A terminated run unwinds like Ctrl-C, so the video's temporary file is removed: by
-    # default SIGTERM ends Python without running any `finally`.
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, _exit_on_sigterm)
     parser = make_parser()
     args = parser.parse_args(argv)
     if args.command is None:  # what to run is missing: the usage, as argparse refuses
         parser.print_help(sys.stderr)
         return a.EXIT_USAGE
-    try:
-        return COMMANDS[args.command](args)
-    except (ConfigError, MachineError) as err:  # refused before anything ran
-        print(f"pyramid-sim: error: {err}", file=sys.stderr)
-        return a.EXIT_USAGE
-    except (PyramidSimError, OSError) as err:
-        print(f"pyramid-sim: failed: {err}", file=sys.stderr)
-        return a.EXIT_FAILED
-    except KeyboardInterrupt:  # Ctrl-C: partial files are already gone; no traceback
-        print("pyramid-sim: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
-    except ctypes.ArgumentError as err:
-        if not interrupted(err):
-            raise
-        print("pyramid-sim: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
-
-
-def interrupted(err: ctypes.ArgumentError) -> bool:
-    """Whether ctypes' error wraps a Ctrl-C: one that lands while a frame renders arrives as
-    "argument 1: KeyboardInterrupt" from the OpenGL binding's argument conversion."""
-    cause = err.__cause__ or err.__context__
-    return isinstance(cause, KeyboardInterrupt) or "KeyboardInterrupt" in str(err)
+    return ended("pyramid-sim", lambda: COMMANDS[args.command](args))
 
 
 __all__ = ["main", "make_parser"]

@@ -13,13 +13,16 @@ from pathlib import Path
 
 from ..choices import ARM_CHOICES, ArmChoice
 from ..config import SimConfig
+from ..core.plan import Plan
 from ..errors import ConfigError, MachineError
+from ..output.claims import check_file, check_not_dataset
 from ..output.files import check_writable_dir, removed_if_failed
 from ..output.lock import holding
 from ..output.result import BuildResult
 from .args import EXIT_FAILED, config_from_args, size_options, spec_from_args
 from .progress import Progress
 from .sweep_args import sweep_config_from_args
+from .targets import check_build_targets
 from .video_args import video_config_from_args
 
 
@@ -57,7 +60,7 @@ def cmd_build(args: argparse.Namespace) -> int:
             snapshot=args.snapshot,
             video_config=video_config,
             out=args.out,
-            on_start=lambda plan: progress.start(total=len(plan.bricks)),
+            on_start=lambda plan: started(args, plan, config, progress),
             on_placed=progress.advance_to,
             on_frame=lambda n: progress.count(),
             goals=args.goals,
@@ -66,6 +69,13 @@ def cmd_build(args: argparse.Namespace) -> int:
     files = [args.out / "result.json", *(p for p in (args.video, args.snapshot) if p is not None)]
     print(build_summary(result, files))
     return 0 if result.success else EXIT_FAILED
+
+
+def started(args: argparse.Namespace, plan: Plan, config: SimConfig, progress: Progress) -> None:
+    """The plan is checked and the folders held: what the build would write over is judged
+    (before any physics), then the progress starts."""
+    check_build_targets(args, plan, config)
+    progress.start(total=len(plan.bricks))
 
 
 def verdict(result: BuildResult) -> str:
@@ -131,6 +141,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out, as such a point measures nothing."""
     config = sweep_config_from_args(args)
     check_writable_dir(args.out)
+    check_not_dataset(args.out)
     from ..physics.reach import prepare
     from ..sweep.run import report, run_sweep
 
@@ -172,6 +183,8 @@ def cmd_scene(args: argparse.Namespace) -> int:
     if args.out.suffix.lower() not in (".mjb", ".xml"):
         raise ConfigError(f"out: {str(args.out)!r} must end in .mjb or .xml")
     check_writable_dir(args.out.parent)
+    check_not_dataset(args.out.parent)
+    check_file(args.out, "out", "scene", overwrite=args.overwrite)
     if args.out.suffix.lower() == ".xml":
         from ..output.scene_files import check_mesh_folder
 

@@ -20,6 +20,7 @@ from .args import (
 from .episode_args import add_episode_args, episode_inputs
 from .paths import policies_from_here
 from .progress import Progress
+from .targets import add_overwrite_arg, check_evaluate_targets
 
 
 def add_evaluate_args(p: argparse.ArgumentParser) -> None:
@@ -63,6 +64,7 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
     )
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/evaluation"))
+    add_overwrite_arg(p, "an evaluation.json or film")
     # not given: a checkpoint's training says, else the defaults the help names
     p.set_defaults(robot=None, structure=None, variation=None, fps=None, action_mode=None)
 
@@ -74,6 +76,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     args = as_trained(args)
     config, spec, sizes = episode_inputs(args, "evaluated")
     policies_from_here()
+    check_evaluate_targets(args, config, spec.size)
     # the library holds --out, and removes it if it made it and fails
     with Progress("episodes", args.episodes, "episode", quiet=args.quiet) as progress:
         progress.start()

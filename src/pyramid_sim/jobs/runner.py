@@ -91,6 +91,8 @@ def _worker_loop(
             return
         try:
             conn.send(("done", work(job)))
+        except KeyboardInterrupt:  # raised by the job's own code (SIGINT is ignored here)
+            conn.send(("interrupted", None))
         except Exception as err:  # the run goes on; the job's end says what happened
             conn.send(("raised", f"{type(err).__name__}: {err}"))
 
@@ -137,6 +139,8 @@ class _Worker:
             if kind == "ready":
                 self.ready = True
                 continue
+            if kind == "interrupted":  # a job's Ctrl-C stops the run, as in one process
+                raise KeyboardInterrupt
             return self._finish(payload if kind == "done" else None,
                                 None if kind == "done" else f"crashed: {payload}")  # fmt: skip
         if not self.proc.is_alive():

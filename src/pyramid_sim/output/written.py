@@ -12,6 +12,7 @@ from typing import Any
 from ..config import VideoConfig
 from ..errors import ConfigError
 from ..options import path_argument
+from .claims import check_not_dataset
 from .files import check_writable_dir, removed_if_failed
 from .lock import holding
 
@@ -23,6 +24,14 @@ def out_folder(out: Any) -> Path | None:
     folder = path_argument(out, "out", "a folder's path")
     if folder is not None:
         check_writable_dir(folder)
+    return folder
+
+
+def results_folder(out: Any) -> Path | None:
+    """`out` as `out_folder` takes it, and refused if a recorded dataset is there: a build's
+    or an evaluation's files would be taken for the dataset's."""
+    folder = out_folder(out)
+    check_not_dataset(folder)
     return folder
 
 
@@ -47,6 +56,7 @@ def build_folders(out: Path | None, films: Films) -> list[tuple[Path, str]]:
     folders += [(path.parent, f"{suffix[1:]} path") for suffix, (_, path) in films.items()]
     for folder, what in folders:
         check_writable_dir(folder, what)
+        check_not_dataset(folder, what)
     return folders
 
 

@@ -60,11 +60,12 @@ UNBUILT_MODES = {
 }
 
 
-def check_mode_for_robot(name: str, robot: str) -> None:
-    """ConfigError for a mode whose expert does not build with `robot` (UNBUILT_MODES)."""
+def check_mode_for_robot(name: str, robot: str, offered: tuple[str, ...] = ()) -> None:
+    """ConfigError for a mode whose expert does not build with `robot` (UNBUILT_MODES),
+    naming those of `offered` (default every mode: `record` offers fewer) it builds in."""
     unbuilt = UNBUILT_MODES.get(robot, {})
     if name in unbuilt:
-        accepted = in_words(tuple(m for m in MODES if m not in unbuilt))
+        accepted = in_words(tuple(m for m in offered or tuple(MODES) if m not in unbuilt))
         raise ConfigError(
             f"action mode: {name!r} is not offered for {robot} ({unbuilt[name]}); "
             f"accepted {accepted}"

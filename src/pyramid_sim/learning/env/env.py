@@ -45,6 +45,7 @@ from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
 from ..task.spaces import checked_action, goals, hidden, next_of, observation_space, pick, renderer
+from .action_check import not_bool
 from .control_steps import ControlSteps
 from .episode_state import EpisodeState
 
@@ -176,7 +177,7 @@ class BuildEnv(gymnasium.Env):
 
     def step(self, action: np.ndarray) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         require_live_episode(self._reset_needed, self.episode.ended)
-        action = checked_action(action, self._low, self._high, self.mode.names)
+        action = checked_action(not_bool(action), self._low, self._high, self.mode.names)
         target = self.mode.target(action, self.measured_state())
         self.episode.steps_taken += 1
         failure, newly = self._control.run(target)

@@ -52,7 +52,11 @@ class EvaluateConfig:
         check_level(self.variation)
         control_steps(self.fps, MotionConfig().control_dt)
         check_seed(self.first_seed)
-        check_seed(self.first_seed + self.episodes - 1)
+        if self.first_seed > 2**32 - self.episodes:  # the last episode's seed below 2**32
+            raise ConfigError(
+                f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "
+                f"{self.episodes} (the last of {self.episodes} episodes' seeds below 2**32)"
+            )
         if self.max_steps is not None:
             MAX_STEPS.check_whole(self.max_steps)  # 1.5 steps reached Gymnasium's TimeLimit
         if not 0 <= self.videos <= self.episodes:

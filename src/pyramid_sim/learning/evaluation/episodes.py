@@ -4,7 +4,6 @@ worker (sharded.py), filmed or not."""
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +13,7 @@ from ...errors import ActionError, PolicyError
 from ...output.files import atomic_path
 from ..env.env import BuildEnv
 from ..recording.episode import step_limit
+from ..recording.policy_calls import policy_call
 from .config import EvaluateConfig
 
 
@@ -36,10 +36,10 @@ def run_episode(env: Any, policy: Any, seed: int, film: Any = None) -> dict[str,
     not): its row. An episode cut by a step limit fails for it. PolicyError if the policy's
     reset() or act() raises, or act() gives an action the environment does not take."""
     observation, _ = env.reset(seed=seed)
-    _policy_call(policy.reset, "reset()")
+    policy_call(policy.reset, "reset()")
     steps, start = 0, time.perf_counter()
     while True:
-        action = _policy_call(policy.act, "act()", observation)
+        action = policy_call(policy.act, "act()", observation)
         try:
             observation, _, terminated, truncated, info = env.step(action)
         except ActionError as err:
@@ -101,11 +101,3 @@ def _filmed(env: Any, policy: Any, seed: int, path: Path, fps: int) -> dict[str,
     with atomic_path(path) as tmp:
         film(tmp)
     return rows[0]
-
-
-def _policy_call(method: Callable[..., Any], what: str, *args: Any) -> Any:
-    """`method(*args)` of a policy; PolicyError naming `what` raised what, if it raises."""
-    try:
-        return method(*args)
-    except (Exception, SystemExit) as err:  # an exit too: the user's code, in one line
-        raise PolicyError(f"{what} raised {type(err).__name__}: {err}") from err

@@ -12,7 +12,8 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from ...errors import ConfigError
+from ...errors import ConfigError, Terminated
+from ..recording.policy_calls import exits_raised
 
 NAMED = ("expert", "zero", "random")
 
@@ -104,7 +105,10 @@ def make_policy(spec: str, env: Any) -> Policy:
         raise ConfigError(f"policy: {spec!r} is not one; accepted {ACCEPTED}")
     factory = _factory(spec, module, name)
     try:
-        made = factory(env)
+        with exits_raised():
+            made = factory(env)
+    except Terminated:
+        raise
     except (Exception, SystemExit) as err:  # the user's code: one line naming it
         raise ConfigError(
             f"policy: {spec!r} failed to make its policy ({_raised(err)}); "

@@ -32,6 +32,7 @@ class LerobotPolicy:
             from lerobot.policies.factory import get_policy_class
         except ImportError:
             raise lerobot_missing() from None
+        check_checkpoint_files(folder)
         config = PreTrainedConfig.from_pretrained(str(folder))
         config.device = "cpu"
         self.policy = get_policy_class(config.type).from_pretrained(str(folder), config=config)
@@ -62,6 +63,49 @@ class LerobotPolicy:
             action = self.post(self.policy.select_action(self.pre(tensors)))
         theirs = action.to("cpu").numpy()[0]  # in lerobot's units for the robot, as recorded
         return np.asarray(self.action_units.from_lerobot(theirs), dtype=np.float32)
+
+
+CHECKPOINT_FILES = ("model.safetensors", "policy_preprocessor.json", "policy_postprocessor.json")
+
+
+def check_checkpoint_files(folder: Path) -> None:
+    """ConfigError naming the first file of a checkpoint that is missing, or a weights file
+    cut short (its safetensors header names more bytes than it holds): lerobot would fail on
+    either with a traceback of its own."""
+    for name in CHECKPOINT_FILES:
+        if not (folder / name).is_file():
+            raise ConfigError(
+                f"policy: {str(folder)!r} holds no {name}; accepted a lerobot checkpoint's "
+                f"pretrained_model folder (config.json, {', '.join(CHECKPOINT_FILES)})"
+            )
+    problem = safetensors_problem(folder / CHECKPOINT_FILES[0])
+    if problem:
+        raise ConfigError(
+            f"policy: {str(folder / CHECKPOINT_FILES[0])!r} {problem}; accepted a whole "
+            "checkpoint (copy it again, or train it again)"
+        )
+
+
+def safetensors_problem(path: Path) -> str:
+    """What is wrong with `path` as a safetensors file, read from its header alone (8 bytes
+    of header length, the JSON header, then the tensors' bytes), or ""."""
+    import json
+
+    size = path.stat().st_size
+    with open(path, "rb") as f:
+        head = f.read(8)
+        length = int.from_bytes(head, "little") if len(head) == 8 else -1
+        if length < 0 or 8 + length > size:
+            return f"is cut short ({size} bytes, not even its header)"
+        try:
+            header = json.loads(f.read(length))
+            ends = [int(t["data_offsets"][1]) for k, t in header.items() if k != "__metadata__"]
+        except (ValueError, TypeError, KeyError, IndexError, AttributeError) as err:
+            return f"is not a safetensors file ({type(err).__name__} in its header)"
+    needed = 8 + length + max(ends, default=0)
+    if size < needed:
+        return f"is cut short ({size} bytes of the {needed} its header names)"
+    return ""
 
 
 def lerobot_missing() -> MachineError:

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ActionError, PolicyError
+from .policy_calls import policy_call
 
 SPAN = 2.0  # s a driver keeps the arms: a learned chunk of 20 actions at 10 frames a second
 REACH = 0.005  # m a hand's pose may stray from the expert's (DART's 5 mm), at DE NIRO's scale
@@ -84,9 +84,4 @@ class Mixer:
 
 def _call(method: Any, what: str, *args: Any) -> Any:
     """A learner's `method(*args)`; PolicyError naming `what` raised what, if it raises."""
-    try:
-        return method(*args)
-    except (ActionError, PolicyError):
-        raise
-    except (Exception, SystemExit) as err:  # the user's code: one line naming it
-        raise PolicyError(f"policy: {what} raised {type(err).__name__}: {err}") from err
+    return policy_call(method, f"policy: {what}", *args)

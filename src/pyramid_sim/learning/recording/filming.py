@@ -11,13 +11,14 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
+from ...errors import ConfigError
 from ..dataset import lerobot_format as fmt
 from ..env.env import BuildEnv
 from ..task.observation_names import environment_names
 from .dagger import Mixer, bounded
 from .episode import Frame, expert_episode
 from .record_config import RecordConfig
-from .staging import staging_folder
+from .staging import REFUSED, staging_folder
 
 # What makes a DAgger round's learner for an environment from its `--policy` text (the
 # evaluation's policy maker, handed down by whoever records: recording sits below it)
@@ -121,7 +122,10 @@ class FilmAway:
             _WORKER_ENV["config"] = self.config
             _WORKER_ENV["learner"] = learner_for(env, self.config, self.policies)
         env, learner = _WORKER_ENV["env"], _WORKER_ENV["learner"]
-        return film_staged(env, self.config, episode, out, learner=learner)
+        try:
+            return film_staged(env, self.config, episode, out, learner=learner)
+        except ConfigError as err:  # a learner's failure: handed back, said as one process does
+            return {REFUSED: err}
 
 
 def learner_for(env: BuildEnv, config: RecordConfig, policies: PolicyMaker | None) -> Any:

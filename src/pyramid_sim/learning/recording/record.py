@@ -31,7 +31,16 @@ from ..task.variation import check_differ
 from .episode import PRIMITIVES, task_text
 from .filming import FilmAway, PolicyMaker, features, film_staged, learner_for, make_env
 from .record_config import RecordConfig, Recorded
-from .resume_checks import RECORDS, check_folder, damaged_episodes, forget, read_records, refusal
+from .resume_checks import (
+    RECORDS,
+    check_folder,
+    check_resumable,
+    damaged_episodes,
+    description_problem,
+    forget,
+    read_records,
+    refusal,
+)
 from .same_recording import check_same_recording, settings_of
 from .staging import STAGING, land, staged
 
@@ -123,6 +132,7 @@ def _resumable(out: Path, config: RecordConfig, repair: bool) -> dict[int, dict[
     damaged.update(damaged_episodes(out, records))
     if damaged and not repair:
         raise refusal(out, damaged)
+    check_resumable(out, records, damaged, config.episodes, config.policy, repair)
     forget(out, damaged)
     return {i: r for i, r in records.items() if i not in damaged}
 
@@ -147,6 +157,8 @@ class _Landing:
         self.added = 0
         if records:
             self._repair()
+            if description_problem(out):  # only with repair: refused otherwise
+                _write_text(out / DATASET_DOC, json.dumps(_dataset_doc(env, config), indent=1))
 
     def _repair(self) -> None:
         """The metadata of the episodes already in the dataset, written again where a run

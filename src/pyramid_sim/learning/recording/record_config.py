@@ -18,6 +18,7 @@ from ...errors import ConfigError
 from ...jobs.backends import check_backend
 from ...options import names_argument, plain_numbers
 from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
+from ..action_modes.registry import check_mode_for_robot
 from ..task.layout import check_image_size, control_steps
 from ..task.randomize import check_parts
 from ..task.variation import DEFAULT_LEVEL, check_level
@@ -87,6 +88,9 @@ class RecordConfig:
                 f"action mode: {self.action_mode!r} is not recorded; accepted "
                 + in_words(RECORD_ACTION_MODES)
             )
+        robot = getattr(self.options.get("config"), "robot", None)
+        if robot is not None:  # refused naming the modes record takes
+            check_mode_for_robot(self.action_mode, robot, RECORD_ACTION_MODES)
         if not 0 <= self.first_seed <= 2**32 - self.episodes:  # every episode's seed < 2**32
             raise ConfigError(
                 f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "

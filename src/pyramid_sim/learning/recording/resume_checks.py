@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ...errors import ConfigError
+from ...output.files import check_writable_dir
 from ...output.lock import LOCK_NAME
 from ..dataset import lerobot_format as fmt
 from .staging import STAGING
@@ -32,6 +33,7 @@ LEFT_BY_A_FIRST_RUN = (
     re.escape(LOCK_NAME),
 )
 SHOWN = 3  # foreign files named in a refusal
+DATASET_TOPS = ("data", "videos", "meta", STAGING)  # the folders a recording writes in
 
 
 def read_records(out: Path) -> tuple[dict[int, dict[str, Any]], dict[int, str]]:
@@ -120,6 +122,67 @@ def forget(out: Path, episodes: Iterable[int]) -> None:
         (out / RECORDS / f"episode_{index:06d}.json").unlink(missing_ok=True)
 
 
+def check_resumable(
+    out: Path,
+    records: dict[int, dict[str, Any]],
+    damaged: dict[int, str],
+    episodes: int,
+    policy: str | None,
+    repair: bool,
+) -> None:
+    """ConfigError, before any work, for what a resumed run would lose or get wrong: a folder
+    it cannot write in, a damaged episode past `episodes` (its repair would delete it), one
+    a repair would record with another driver than its own (the expert for a DAgger
+    episode), and a dataset whose description is missing or broken, unless `repair`."""
+    for folder in [out, *(p for t in DATASET_TOPS for p in _folders(out / t))]:
+        check_writable_dir(folder)
+    beyond = sorted(i for i in damaged if i >= episodes)
+    if repair and beyond:
+        raise ConfigError(
+            f"out: {str(out)!r} has a damaged episode {beyond[0]}, past the {episodes} "
+            f"episodes asked for, so repairing would delete it; accepted --episodes "
+            f"{beyond[-1] + 1} or more to record it again"
+        )
+    for index in sorted(damaged) if repair else ():
+        driver = records.get(index, {}).get("driver", {}).get("policy")
+        if index in records and driver != policy:
+            was = "the expert" if driver is None else f"the policy {driver!r} (DAgger)"
+            now = "the expert" if policy is None else f"the policy {policy!r}"
+            raise ConfigError(
+                f"out: {str(out)!r} has a damaged episode {index} driven by {was}, which "
+                f"--repair would record again driven by {now}; accepted "
+                + ("no --policy" if driver is None else f"--policy {driver}")
+                + " with --repair"
+            )
+    problem = description_problem(out) if records and not repair else ""
+    if problem:
+        raise ConfigError(
+            f"out: {str(out)!r} has {problem}; accepted --repair (repair=True) to write it "
+            "again from this run's settings, or a new folder"
+        )
+
+
+def description_problem(out: Path) -> str:
+    """What is wrong with the dataset's own description (meta/pyramid_sim/dataset.json),
+    or "" when it is a JSON object naming the structure."""
+    name = f"{RECORDS}/dataset.json"
+    try:
+        document = json.loads((out / name).read_bytes())
+    except FileNotFoundError:
+        return f"no {name}"
+    except (OSError, ValueError) as err:
+        return f"a {name} that cannot be read ({type(err).__name__}: {err})"
+    if not isinstance(document, dict) or "structure" not in document:
+        return f"a {name} that is not a dataset's description"
+    return ""
+
+
+def _folders(top: Path) -> list[Path]:
+    if not top.is_dir() or top.is_symlink():
+        return []
+    return [top, *(p for p in top.rglob("*") if p.is_dir() and not p.is_symlink())]
+
+
 def _frames_problem(out: Path, name: str, length: int, count: Any) -> str:
     path = out / name
     if not path.is_file():
@@ -147,7 +210,15 @@ def _video_frames(path: Path) -> int:
 
 
 def _files(out: Path) -> list[str]:
-    return sorted(str(p.relative_to(out)) for p in out.rglob("*") if not p.is_dir())
+    """The files of `out`, looked into only where a dataset keeps them: any other name at the
+    top is named as it is (a folder such as / is not walked)."""
+    found = []
+    for top in sorted(out.iterdir()):
+        if top.name in DATASET_TOPS and top.is_dir() and not top.is_symlink():
+            found += sorted(str(p.relative_to(out)) for p in top.rglob("*") if not p.is_dir())
+        else:
+            found.append(top.name)
+    return found
 
 
 def _left_by_a_first_run(name: str) -> bool:

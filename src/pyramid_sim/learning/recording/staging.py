@@ -35,6 +35,9 @@ def staging_folder(out: Path, episode: int) -> Path:
     return out / STAGING / f"episode_{episode:06d}"
 
 
+REFUSED = "refused"  # a worker's result key: the ConfigError its episode raised
+
+
 @dataclass(frozen=True)
 class _FilmInto:
     """A worker's job: film an episode into `out`'s staging area (a folder this machine
@@ -57,6 +60,8 @@ class _FilmShipped:
     def __call__(self, episode: int) -> dict[str, Any]:
         with tempfile.TemporaryDirectory(prefix="pyramid-sim-episode-") as tmp:
             result = self.film(episode, Path(tmp))
+            if REFUSED in result:
+                return result
             root = staging_folder(Path(tmp), episode)
             result["files"] = {
                 str(path.relative_to(root)): path.read_bytes()
@@ -115,6 +120,8 @@ def staged(
             end = done.pop(episode)
             if end.failure is not None:
                 raise PyramidSimError(f"episode {episode}: {end.failure}")
+            if REFUSED in end.value:  # a policy's error in a worker: as in one process
+                raise end.value[REFUSED]
             yield _unpack(out, end.value) if ray else end.value
     finally:
         ends.close()  # an interrupt, or a failure, stops every worker at once
