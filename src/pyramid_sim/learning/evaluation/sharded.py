@@ -14,6 +14,7 @@ from typing import Any
 from ...errors import PolicyError, PyramidSimError
 from ...jobs.runner import run_jobs
 from ...output.files import atomic_path
+from ...output.replay_tape import episode_file
 from .config import EvaluateConfig
 from .episodes import episode_row, make_env
 from .policies import make_policy
@@ -23,10 +24,10 @@ _WORKER: dict[str, Any] = {}  # this worker process's evaluation, environment an
 
 @dataclass(frozen=True)
 class _EpisodeAway:
-    """One episode run in a worker process or a Ray task: its row, and its film's bytes where
-    it is among the first filmed (the evaluation's machine writes the file, so a Ray node
-    needs no disk shared with it). A policy's error is handed back, not raised: it is the
-    user's, and is said in one line."""
+    """One episode run in a worker process or a Ray task: its row, its replay's bytes, and
+    its film's where it is among the first filmed (the evaluation's machine writes the files,
+    so a Ray node needs no disk shared with it). A policy's error is handed back, not
+    raised: it is the user's, and is said in one line."""
 
     config: EvaluateConfig
 
@@ -38,12 +39,13 @@ class _EpisodeAway:
             _WORKER.update(config=self.config, env=env, policy=make_policy(self.config.policy, env))
         env, policy = _WORKER["env"], _WORKER["policy"]
         try:
-            if i < self.config.videos:
-                with tempfile.TemporaryDirectory(prefix="pyramid-sim-film-") as tmp:
-                    film = Path(tmp) / "episode.mp4"
-                    row = episode_row(env, policy, self.config, i, None, film)
-                    return {"row": row, "film": film.read_bytes()}
-            return {"row": episode_row(env, policy, self.config, i, None)}
+            with tempfile.TemporaryDirectory(prefix="pyramid-sim-film-") as tmp:
+                film = Path(tmp) / "episode.mp4" if i < self.config.videos else None
+                replay = Path(tmp) / "replay" / "episode.npz"
+                row = episode_row(env, policy, self.config, i, None, film, replay)
+                meshes = {p.name: p.read_bytes() for p in replay.parent.glob("meshes_*.npz")}
+                value = {"row": row, "replay": replay.read_bytes(), "meshes": meshes}
+                return {**value, "film": film.read_bytes()} if film is not None else value
         except PolicyError as err:
             return {"policy_error": str(err)}
 
@@ -75,6 +77,13 @@ def run_sharded(
                 on_episode(end.value["row"])
     if out is not None:
         for i, value in sorted(done.items()):
+            with atomic_path(episode_file(out, i)) as tmp:
+                tmp.write_bytes(value["replay"])
+            for name, data in value["meshes"].items():  # the episodes' shared meshes, once
+                shared = episode_file(out, i).parent / name
+                if not shared.exists():
+                    with atomic_path(shared) as tmp:
+                        tmp.write_bytes(data)
             if "film" in value:
                 seed = config.first_seed + i
                 with atomic_path(out / f"episode_{seed}.mp4") as tmp:
