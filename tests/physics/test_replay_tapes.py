@@ -63,3 +63,4 @@ def test_an_evaluation_keeps_each_episodes_poses_with_its_seed(tmp_path):
         assert f"seed {row['seed']}" in str(tape["title"])
         assert len(tape["mesh_vert"]) > 1000  # read from the shared file
     assert main(["replay", str(out), "--episode", "1", "--html", str(tmp_path / "e.html")]) == 0
+    assert (out / "evaluation.png").stat().st_size > 10_000  # its plot, beside it

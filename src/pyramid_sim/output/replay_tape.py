@@ -32,9 +32,14 @@ SCENE_CAMERA = "overview"
 MESH_ARRAYS = ("mesh_vert", "mesh_face", "mesh_vertnum", "mesh_facenum")
 
 
+def episode_name(index: int) -> str:
+    """The file of episode `index` (from 0) in an evaluation's or a recording's replay/."""
+    return f"episode_{index:06d}.npz"
+
+
 def episode_file(folder: Path, index: int) -> Path:
-    """Where an evaluation's or a recording's episode `index` (from 0) keeps its poses."""
-    return folder / EPISODES_FOLDER / f"episode_{index:06d}.npz"
+    """Where an evaluation's or a recording's episode `index` keeps its poses."""
+    return folder / EPISODES_FOLDER / episode_name(index)
 
 
 class PoseTape:

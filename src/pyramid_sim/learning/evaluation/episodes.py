@@ -12,7 +12,7 @@ from gymnasium.wrappers import TimeLimit
 
 from ...errors import ActionError, PolicyError
 from ...output.files import atomic_path
-from ...output.replay_tape import EpisodeTape, episode_file
+from ...output.replay_tape import EpisodeTape
 from ..env.env import BuildEnv
 from ..recording.episode import step_limit
 from .config import EvaluateConfig
@@ -90,14 +90,12 @@ def episode_row(
     replay: Path | None = None,
 ) -> dict:
     """Episode `i`'s row, filmed if among the first `videos` (into `out`, or the file
-    `film`), its poses taped for a replay into `out` (or the file `replay`); a PolicyError
+    `film`), its poses taped for a replay into the file `replay`, if given; a PolicyError
     names the policy, the episode and its seed (the user's code: one line, and no
     evaluation.json)."""
     seed = config.first_seed + i
     if film is None and out is not None and i < config.videos:
         film = out / f"episode_{seed}.mp4"
-    if replay is None and out is not None:
-        replay = episode_file(out, i)
     tape = None if replay is None else EpisodeTape(replay, seed)
     try:
         if film is not None:

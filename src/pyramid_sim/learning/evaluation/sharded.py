@@ -14,7 +14,7 @@ from typing import Any
 from ...errors import PolicyError, PyramidSimError
 from ...jobs.runner import run_jobs
 from ...output.files import atomic_path
-from ...output.replay_tape import episode_file
+from ...output.replay_tape import episode_name
 from .config import EvaluateConfig
 from .episodes import episode_row, make_env
 from .policies import make_policy
@@ -51,10 +51,13 @@ class _EpisodeAway:
 
 
 def run_sharded(
-    config: EvaluateConfig, out: Path | None, on_episode: Callable[[dict[str, Any]], Any] | None
+    config: EvaluateConfig,
+    out: Path | None,
+    on_episode: Callable[[dict[str, Any]], Any] | None,
+    replays: Path | None = None,
 ) -> list[dict[str, Any]]:
     """The episodes' rows in seed order, run by the job runner on `config.workers` processes
-    or Ray tasks; `on_episode` hears each as it ends. A worker's crash or a policy's error
+    or Ray tasks; `on_episode` hears each as it ends; their poses written into `replays`. A worker's crash or a policy's error
     stops the evaluation (PyramidSimError, PolicyError), its films unwritten."""
     ends = run_jobs(
         _EpisodeAway(config),
@@ -75,15 +78,14 @@ def run_sharded(
             done[end.job] = end.value
             if on_episode is not None:
                 on_episode(end.value["row"])
+    if replays is not None:
+        for i, value in sorted(done.items()):
+            (replays / episode_name(i)).write_bytes(value["replay"])
+            for name, data in value["meshes"].items():  # the episodes' shared meshes, once
+                if not (replays / name).exists():
+                    (replays / name).write_bytes(data)
     if out is not None:
         for i, value in sorted(done.items()):
-            with atomic_path(episode_file(out, i)) as tmp:
-                tmp.write_bytes(value["replay"])
-            for name, data in value["meshes"].items():  # the episodes' shared meshes, once
-                shared = episode_file(out, i).parent / name
-                if not shared.exists():
-                    with atomic_path(shared) as tmp:
-                        tmp.write_bytes(data)
             if "film" in value:
                 seed = config.first_seed + i
                 with atomic_path(out / f"episode_{seed}.mp4") as tmp:
