@@ -89,6 +89,7 @@ for (let b = 0; b < bodies; b++) {
   scene.add(group);
   groups.push(group);
 }
+const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x3a1a12 });
 const walls = [];  // thin tall boxes of the room: hidden while the camera is behind them
 for (let i = 0; i < arrays.geom_type.length; i++) {
   const type = arrays.geom_type[i];
@@ -108,6 +109,12 @@ for (let i = 0; i < arrays.geom_type.length; i++) {
   mesh.castShadow = type !== 0;
   mesh.receiveShadow = true;
   groups[arrays.geom_body[i]].add(mesh);
+  if (type === 6 && arrays.geom_body[i] !== 0) {  // a brick's edges, so each shows in a wall
+    const edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry), edgeMaterial);
+    edges.position.copy(mesh.position);
+    edges.quaternion.copy(mesh.quaternion);
+    groups[arrays.geom_body[i]].add(edges);
+  }
   const thin = Math.min(s[0], s[1], s[2]), long = Math.max(s[0], s[1], s[2]);
   if (type === 6 && arrays.geom_body[i] === 0 && thin < 0.05 && long > 1) {
     const axis = new THREE.Vector3().setComponent(s.indexOf(thin), 1).applyQuaternion(mesh.quaternion);
