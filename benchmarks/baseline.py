@@ -43,6 +43,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
+from films import films_beside  # noqa: E402
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
 
 from pyramid_sim.choices import EVAL_FIRST_SEED, FPS_CHOICES, RECORD_ACTION_MODES  # noqa: E402
@@ -489,6 +490,7 @@ def main(argv: list[str] | None = None) -> int:
     if results is not None:
         results.mkdir(parents=True, exist_ok=True)
         (results / f"{recipe.row}.json").write_text(row)
+    films_beside(last, recipe, scored, (results or out) / "films", row)  # films.py
     print(
         f"baseline {recipe.row}: {scores['successes']}/{scores['episodes']} built "
         f"({100 * scores['success_rate']:.0f} %), trained {recipe.steps} steps in "

@@ -116,6 +116,9 @@ def _packed(tape: dict[str, Any]) -> tuple[dict[str, Any], bytes]:
     """The arrays the page reads, each 4-byte aligned in one buffer, and where each lies."""
     frames, bodies = tape["pos"].shape[:2]
     arrays = {k: np.ascontiguousarray(tape[k], dtype) for k, dtype in ARRAYS.items()}
+    verts = np.asarray(tape["mesh_vert"], np.float32)
+    mesh_unit = float(np.abs(verts).max(initial=0.0)) / 32767 or 1.0  # m a step: ~6 um
+    arrays["mesh_vert"] = np.round(verts / mesh_unit).astype(np.int16)  # gzips to half
     for name in ("pos", "quat"):
         values = tape[name].astype(np.int16)
         arrays[name] = np.concatenate([values[:1], np.diff(values, axis=0)]).astype(np.int16)
@@ -133,6 +136,7 @@ def _packed(tape: dict[str, Any]) -> tuple[dict[str, Any], bytes]:
         "frame_dt": float(tape["frame_dt"]),
         "pos_unit": POS_UNIT,
         "quat_unit": QUAT_UNIT,
+        "mesh_unit": mesh_unit,
         "arrays": where,
     }
     return header, b"".join(chunks)

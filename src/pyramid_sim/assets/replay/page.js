@@ -62,7 +62,8 @@ let vert = 0, face = 0;
 for (let m = 0; m < arrays.mesh_vertnum.length; m++) {
   const nv = arrays.mesh_vertnum[m], nf = arrays.mesh_facenum[m];
   const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.BufferAttribute(arrays.mesh_vert.slice(3 * vert, 3 * (vert + nv)), 3));
+  const position = Float32Array.from(arrays.mesh_vert.subarray(3 * vert, 3 * (vert + nv)), (v) => v * header.mesh_unit);
+  g.setAttribute("position", new THREE.BufferAttribute(position, 3));
   g.setIndex(new THREE.BufferAttribute(arrays.mesh_face.slice(3 * face, 3 * (face + nf)), 1));
   g.computeVertexNormals();
   meshes.push(g);
