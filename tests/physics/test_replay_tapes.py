@@ -64,3 +64,20 @@ def test_an_evaluation_keeps_each_episodes_poses_with_its_seed(tmp_path):
         assert len(tape["mesh_vert"]) > 1000  # read from the shared file
     assert main(["replay", str(out), "--episode", "1", "--html", str(tmp_path / "e.html")]) == 0
     assert (out / "evaluation.png").stat().st_size > 10_000  # its plot, beside it
+
+
+@pytest.mark.processes
+def test_a_recordings_episodes_keep_their_poses_beside_the_dataset(tmp_path):
+    out = tmp_path / "dataset"
+    pyramid_sim.record("pyramid", layers=1, out=out, episodes=1, cameras=())
+    pyramid_sim.record("pyramid", layers=1, out=out, episodes=2, cameras=(), workers=2)  # resumed
+    records = sorted((out / "meta" / "pyramid_sim").glob("episode_*.json"))
+    assert len(records) == 2
+    for i in range(2):
+        tape = load_tape(out / "replay" / f"episode_{i:06d}.npz")
+        assert int(tape["seed"]) == i and f"episode {i} (seed {i})" in str(tape["title"])
+        frames = json.loads(records[i].read_text())["row"]["length"]
+        assert len(tape["time"]) == frames + 1  # the reset's pose, then one a frame
+    assert len(list((out / "replay").glob("meshes_*.npz"))) == 1
+    assert not (out / ".staging").exists()
+    assert main(["replay", str(out), "--episode", "1", "--html", str(tmp_path / "r.html")]) == 0

@@ -50,6 +50,7 @@ ARRAYS = {  # what the page reads from the file, and as what
     "mesh_face": np.uint16,
     "mesh_vertnum": np.int32,
     "mesh_facenum": np.int32,
+    "goal": np.float32,
 }
 
 
@@ -63,6 +64,7 @@ def load_tape(path: Path) -> dict[str, Any]:
                 tape.update({k: npz[k] for k in MESH_ARRAYS})
     except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as err:
         raise ConfigError(f"run: {str(path)!r} is not a replay file ({err})") from None
+    tape.setdefault("goal", np.zeros((0, 7), np.float32))  # a tape may have no plan
     needed = {"format", "frame_dt", "title", "pos", "quat", "body_names", *ARRAYS}
     missing = sorted(needed - tape.keys())
     if missing:

@@ -45,10 +45,10 @@ def episode_file(folder: Path, index: int) -> Path:
 class PoseTape:
     """Call it with (model, data) at each frame; `save` writes the geometry and the poses."""
 
-    def __init__(self, model: mujoco.MjModel, frame_dt: float, title: str = "") -> None:
+    def __init__(self, loop: BuildLoop, frame_dt: float, title: str = "") -> None:
         self.frame_dt = float(frame_dt)
         self.title = title
-        self.scene = scene_of(model)
+        self.scene = {**scene_of(loop.model), "goal": goals_of(loop)}
         self.bodies = self.scene.pop("bodies")
         self.times: list[float] = []
         self.positions: list[np.ndarray] = []
@@ -107,7 +107,7 @@ class EpisodeTape:
     def start(self, env: Any) -> None:
         """The episode has been reset: its (maybe new) model, and its first frame."""
         loop = env.unwrapped.loop
-        self.tape = PoseTape(loop.model, 1.0 / env.unwrapped.metadata["render_fps"])
+        self.tape = PoseTape(loop, 1.0 / env.unwrapped.metadata["render_fps"])
         self.step(env)
 
     def step(self, env: Any) -> None:
@@ -121,12 +121,33 @@ class EpisodeTape:
         self.tape.save(self.path, shared=True, seed=np.int64(self.seed))
 
 
+class Taping:
+    """An environment that tapes its episodes into `tape` (its reset's frame and each step's),
+    standing for it everywhere else, so a rollout needs no hook of its own."""
+
+    def __init__(self, env: Any, tape: EpisodeTape) -> None:
+        self._env, self._tape = env, tape
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._env, name)
+
+    def reset(self, **kwargs: Any) -> Any:
+        reset = self._env.reset(**kwargs)
+        self._tape.start(self._env)
+        return reset
+
+    def step(self, action: Any) -> Any:
+        stepped = self._env.step(action)
+        self._tape.step(self._env)
+        return stepped
+
+
 def taped(loop: BuildLoop, hooks: BuildHooks, film: VideoConfig) -> tuple[PoseTape, BuildHooks]:
     """A tape of `loop` at the film's rate, and `hooks` that feed it (beside the film's
     recorder, if one is filming: both at the film's frames)."""
     from dataclasses import replace
 
-    tape = PoseTape(loop.model, film.frame_dt)
+    tape = PoseTape(loop, film.frame_dt)
     filming = hooks.on_frame
     if filming is None:
         return tape, replace(hooks, on_frame=tape, frame_dt=film.frame_dt)
@@ -182,6 +203,18 @@ def scene_of(model: mujoco.MjModel) -> dict[str, Any]:
         "mesh_facenum": np.asarray([len(f) for f in faces], np.int32),
         "camera": _camera(model),
     }
+
+
+def goals_of(loop: BuildLoop) -> np.ndarray:
+    """Where each brick of the plan is to rest: a row a brick, its centre (x, y, z), yaw and
+    half sizes (length, width, height), drawn on the page as outlines."""
+    brick = loop.config.brick
+    half = (brick.length / 2, brick.width / 2, brick.height / 2)
+    rows = [
+        (b.target.pose.x, b.target.pose.y, b.target.pose.z, b.target.pose.yaw, *half)
+        for b in loop.plan.bricks
+    ]
+    return np.asarray(rows, np.float32).reshape(-1, 7)
 
 
 def _rgba(model: mujoco.MjModel, g: int) -> np.ndarray:

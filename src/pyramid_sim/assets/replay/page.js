@@ -123,6 +123,20 @@ for (let i = 0; i < arrays.geom_type.length; i++) {
   }
 }
 
+// The plan's goals: where each brick is to rest, outlined.
+const goals = new THREE.Group();
+const goalLines = new THREE.LineBasicMaterial({ color: 0xe8b400 });
+for (let i = 0; i < arrays.goal.length / 7; i++) {
+  const g = arrays.goal.subarray(7 * i, 7 * i + 7);
+  const box = new THREE.LineSegments(new THREE.EdgesGeometry(new THREE.BoxGeometry(2 * g[4], 2 * g[5], 2 * g[6])), goalLines);
+  box.position.set(g[0], g[1], g[2]);
+  box.rotation.z = g[3];
+  goals.add(box);
+}
+scene.add(goals);
+const showGoals = document.getElementById("goals");
+showGoals.addEventListener("change", () => { goals.visible = showGoals.checked; });
+
 const POS = header.pos_unit, QUAT = header.quat_unit;
 let frame = 0;
 function setFrame(i) {
