@@ -44,6 +44,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
 
 from families import LABELS, first_training  # noqa: E402
+from films import films_beside  # noqa: E402
 from rows import ROWS, Recipe, Round, quick  # noqa: E402
 from script_checks import check_recipe, check_run_folder, lerobot_needed  # noqa: E402
 
@@ -516,6 +517,7 @@ def _run(out: Path, recipe: Recipe, results: Path | None) -> int:
     if results is not None:
         results.mkdir(parents=True, exist_ok=True)
         (results / f"{recipe.row}.json").write_text(row)
+    films_beside(last, recipe, scored, (results or out) / "films", row)  # films.py
     print(
         f"baseline {recipe.row}: {scores['successes']}/{scores['episodes']} built "
         f"({100 * scores['success_rate']:.0f} %), trained {recipe.steps} steps in "

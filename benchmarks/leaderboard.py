@@ -28,7 +28,8 @@ PAGE = REPO / "docs" / "benchmark.md"
 START, END = "<!-- leaderboard: start -->", "<!-- leaderboard: end -->"
 DAGGER_START, DAGGER_END = "<!-- dagger: start -->", "<!-- dagger: end -->"
 COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
-           "training", "success (95 % interval)", "commit", "reproduce")  # fmt: skip
+           "training", "success (95 % interval)", "films (3D replay)", "commit", "reproduce")  # fmt: skip
+FILMS_LINK = "../benchmarks/results/films"  # the films' folder, from docs/benchmark.md
 TRACK_ORDER = {"keypose": 0, "continuous": 1}
 
 
@@ -107,8 +108,35 @@ def _success(row: dict[str, Any]) -> str:
     )
 
 
-def table(rows: list[dict[str, Any]]) -> str:
-    """The leaderboard's markdown table."""
+def films(row: dict[str, Any], folder: Path | None = None) -> dict[str, dict[str, str]]:
+    """The row's films (kind -> its film's and replay page's names) that benchmarks/films.py
+    made of the row's own run (its manifest's row and finish time are the row's) and that
+    exist, in results/films/ (or `folder`)."""
+    folder = folder or RESULTS / "films"
+    manifest = folder / f"{row['row']}.json"
+    if not manifest.is_file():
+        return {}
+    document = json.loads(manifest.read_text())
+    if document.get("row") != row["row"] or document.get("finished") != row.get("finished"):
+        return {}
+    return {
+        kind: made
+        for kind, made in document.get("films", {}).items()
+        if (folder / made["film"]).is_file() and (folder / made["page"]).is_file()
+    }
+
+
+def _films(row: dict[str, Any], folder: Path | None) -> str:
+    found = films(row, folder)
+    links = [
+        f"[{kind}]({FILMS_LINK}/{made['film']}) ([3D]({FILMS_LINK}/{made['page']}))"
+        for kind, made in found.items()
+    ]
+    return ", ".join(links) or "-"
+
+
+def table(rows: list[dict[str, Any]], films_folder: Path | None = None) -> str:
+    """The leaderboard's markdown table (the films from results/films/, or `films_folder`)."""
     lines = ["| " + " | ".join(COLUMNS) + " |", "|" + " --- |" * len(COLUMNS)]
     for row in rows:
         cells = (
@@ -121,6 +149,7 @@ def table(rows: list[dict[str, Any]]) -> str:
             _demos(row),
             _training(row),
             _success(row),
+            _films(row, films_folder),
             row["commit"][:7] + ("+" if "+" in row["commit"] else ""),
             f"`{row['command']}`",
         )

@@ -138,7 +138,9 @@ def fake_build(monkeypatch):
     def prepare(spec, config, arms="both"):
         return make_plan(spec, config, arms)
 
-    def run_build(plan, config, *, on_placed=None, video=None, on_frame=None, snapshot=None):
+    def run_build(
+        plan, config, *, on_placed=None, video=None, on_frame=None, snapshot=None, replay=None
+    ):  # no replay.npz: the poses are the physics'
         filmed = 0
 
         def film() -> None:  # the frames of one brick's work, or of the settling at the end

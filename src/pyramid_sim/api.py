@@ -74,13 +74,12 @@ def build(
     """Build the structure in the physics and return its judged result; `options` as for
     `plan`. With `video` (an .mp4 path) or `snapshot` (a .png path) the build is rendered
     headless (whether or not MuJoCo was imported first), and a machine without a headless GL
-    backend is refused before any physics runs. With `out`, the result is also saved as
-    `out/result.json`, the file `pyramid-sim build` writes.
+    backend is refused before any physics runs. With `out`, the result is saved as
+    `out/result.json` (as `pyramid-sim build` does), its poses as `out/replay.npz`.
 
     The folders written (`out`, the video's, the still's) are held against a second run while
-    this one runs, and those it made are removed again if it fails. Progress hooks:
-    `on_start(plan)` once the plan is checked reachable and the folders held, `on_placed(n)`
-    when n bricks are placed, `on_frame(n)` when n frames are filmed."""
+    this one runs, and removed if it made them and fails. Hooks: `on_start(plan)` once the
+    plan is reachable and the folders held, `on_placed(n)` at n bricks, `on_frame(n)` at n frames."""
     config, spec = resolve(name, config, options, own=BUILD_KEYWORDS)
     for hook, what in ((on_start, "on_start"), (on_placed, "on_placed"), (on_frame, "on_frame")):
         callback_argument(hook, what)
@@ -106,6 +105,7 @@ def build(
             video=films.get(".mp4"),
             on_frame=on_frame,
             snapshot=films.get(".png"),
+            replay=None if out is None else Path(out) / "replay.npz",
         )
         if out is not None:
             result.save(Path(out) / "result.json")

@@ -75,7 +75,12 @@ def test_the_first_episodes_are_filmed_a_frame_a_step(tmp_path):
     evaluation = pyramid_sim.evaluate(
         "expert", "pyramid", layers=1, out=tmp_path, episodes=2, video=1, max_steps=30
     )
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["episode_100000.mp4", "evaluation.json"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "episode_100000.mp4",
+        "evaluation.json",
+        "evaluation.png",  # its plot
+        "replay",  # each episode's poses, for `pyramid-sim replay`
+    ]
     with av.open(str(tmp_path / "episode_100000.mp4")) as film:
         frames = sum(1 for _ in film.decode(video=0))
     assert frames == evaluation.scores["rows"][0]["steps"] == 30
@@ -361,7 +366,10 @@ def test_episodes_split_across_workers_score_as_one_worker_does(tmp_path):
     with av.open(str(tmp_path / "two" / "episode_100000.mp4")) as film:
         assert sum(1 for _ in film.decode(video=0)) == split.scores["rows"][0]["steps"]
     files = sorted(p.name for p in (tmp_path / "two").iterdir())
-    assert files == ["episode_100000.mp4", "evaluation.json"]
+    assert files == ["episode_100000.mp4", "evaluation.json", "evaluation.png", "replay"]
+    for i in range(10):  # each episode's poses as one worker tapes them, bit for bit
+        taped = f"replay/episode_{i:06d}.npz"
+        assert (tmp_path / "two" / taped).read_bytes() == (tmp_path / "one" / taped).read_bytes()
 
 
 @pytest.mark.processes

@@ -17,6 +17,7 @@ from . import commands
 from .endings import ended
 from .evaluate_command import add_evaluate_args, cmd_evaluate
 from .record_command import add_record_args, cmd_record
+from .replay_command import add_replay_args, cmd_replay
 from .sweep_args import add_sweep_args
 from .targets import add_overwrite_arg
 from .video_args import add_video_args
@@ -30,6 +31,7 @@ COMMANDS = {
     "scene": commands.cmd_scene,
     "record": cmd_record,
     "evaluate": cmd_evaluate,
+    "replay": cmd_replay,
 }
 
 
@@ -73,6 +75,9 @@ def make_parser() -> a.Parser:
     )
     add_evaluate_args(
         sub.add_parser("evaluate", help="score a policy over held-out seeds: DIR/evaluation.json")
+    )
+    add_replay_args(
+        sub.add_parser("replay", help="a run's 3D replay as one HTML page that opens from disk")
     )
     reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
     a.add_robot_arg(reach)

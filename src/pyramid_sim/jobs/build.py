@@ -11,6 +11,7 @@ from typing import Any
 from ..config import SimConfig, VideoConfig
 from ..core.plan import Plan
 from ..output.judge import judge
+from ..output.replay_tape import taped
 from ..output.result import BuildResult, VideoInfo
 from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
@@ -24,10 +25,13 @@ def run_build(
     video: tuple[VideoConfig, Path] | None = None,
     on_frame: Callable[[int], Any] | None = None,
     snapshot: tuple[VideoConfig, Path] | None = None,
+    replay: Path | None = None,
 ) -> BuildResult:
     """Simulate the plan and judge it; optionally record an MP4 of the whole build and a still
     of the final structure (rendering is imported only then, and its GL context is made before
-    any physics runs, so a missing backend costs nothing)."""
+    any physics runs, so a missing backend costs nothing). With `replay`, the bodies' poses at
+    the film's rate are kept in that file for `pyramid-sim replay`, whether the build succeeds
+    or fails."""
     loop = BuildLoop.of(plan, config)
     hooks = BuildHooks(on_placed=on_placed)
     recorder = still = None
@@ -39,6 +43,9 @@ def run_build(
         if video is not None:
             recorder = Recorder(loop.model, video[0], video[1], on_frame)
             hooks = replace(hooks, on_frame=recorder, frame_dt=video[0].frame_dt)
+        tape = None
+        if replay is not None:
+            tape, hooks = taped(loop, hooks, video[0] if video is not None else VideoConfig())
         measured = loop.run(hooks)
     except BaseException:
         if recorder is not None:
@@ -47,6 +54,10 @@ def run_build(
             still.close()
         raise
     result = judge(measured, config)
+    if tape is not None and replay is not None:
+        placed = f"{result.bricks_placed}/{result.bricks_total} bricks placed"
+        tape.title = f"{plan.spec.name}: {'built' if result.success else 'failed'}, {placed}"
+        tape.save(replay)
     if recorder is not None and video is not None:
         recorder.finish()
         vc, path = video

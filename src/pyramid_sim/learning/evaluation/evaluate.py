@@ -10,16 +10,19 @@ from __future__ import annotations
 
 import platform
 from collections.abc import Callable
+from contextlib import nullcontext
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ...output.files import write_json_atomic
+from ...output.files import atomic_dir, write_json_atomic
+from ...output.replay_tape import EPISODES_FOLDER, episode_name
 from ...version import __version__
 from .config import EVAL_SEED, SPLIT, EvaluateConfig
 from .episodes import episode_row, make_env, run_episode
+from .plot import PLOT_FILE, write_evaluation_plot
 from .policies import make_policy
 from .scores import summary
 from .sharded import run_sharded
@@ -71,23 +74,48 @@ def evaluate(
     out: Path | None = None,
     on_episode: Callable[[dict[str, Any]], Any] | None = None,
 ) -> Evaluation:
-    """Run the evaluation; with `out`, write `out/evaluation.json` (and the films,
+    """Run the evaluation; with `out`, write `out/evaluation.json`, its plot
+    `out/evaluation.png`, each episode's poses `out/replay/` (and the films,
     `out/episode_<seed>.mp4`)."""
     env = make_env(config)
+    # the episodes' poses land with evaluation.json, replacing an earlier evaluation's whole
+    staging = nullcontext(None) if out is None else atomic_dir(out / EPISODES_FOLDER)
+    with staging as replays:
+        try:
+            rows = _rows(env, config, out, on_episode, replays)
+        finally:
+            env.close()
+        scores = _scores(config, env, rows)
+        if out is not None:
+            write_json_atomic(out / "evaluation.json", scores)
+            write_evaluation_plot(scores, out / PLOT_FILE)
+    return Evaluation(None if out is None else out / "evaluation.json", scores)
+
+
+def _rows(
+    env: Any,
+    config: EvaluateConfig,
+    out: Path | None,
+    on_episode: Callable[[dict[str, Any]], Any] | None,
+    replays: Path | None,
+) -> list[dict[str, Any]]:
+    """The episodes' rows, run here or by workers; their poses taped into `replays`."""
+    policy = make_policy(config.policy, env)  # a bad policy refused before any worker
+    if config.workers > 1 or config.backend == "ray":
+        return run_sharded(config, out, on_episode, replays)
+    rows = []
+    for i in range(config.episodes):
+        taped = None if replays is None else replays / episode_name(i)
+        rows.append(episode_row(env, policy, config, i, out, replay=taped))
+        if on_episode is not None:
+            on_episode(rows[-1])
+    return rows
+
+
+def _scores(config: EvaluateConfig, env: Any, rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """evaluation.json's document."""
     built, limit = env.unwrapped, env._max_episode_steps
-    try:
-        policy = make_policy(config.policy, env)  # a bad policy refused before any worker
-        if config.workers > 1 or config.backend == "ray":
-            rows = run_sharded(config, out, on_episode)
-        else:
-            rows = []
-            for i in range(config.episodes):
-                rows.append(episode_row(env, policy, config, i, out))
-                if on_episode is not None:
-                    on_episode(rows[-1])
-    finally:
-        env.close()
-    scores = {
+    return {
         "policy": config.policy,
         **summary(rows, len(built.plan.bricks)),
         "protocol": {
@@ -111,11 +139,6 @@ def evaluate(
         "versions": versions(),
         "rows": rows,
     }
-    path = None
-    if out is not None:
-        path = out / "evaluation.json"
-        write_json_atomic(path, scores)
-    return Evaluation(path, scores)
 
 
 def _plain(options: dict[str, Any]) -> dict[str, Any]:

@@ -9,9 +9,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from ...errors import ConfigError
+from ...output.replay_tape import EPISODES_FOLDER, EpisodeTape, Taping, episode_name
 from ..dataset import lerobot_format as fmt
 from ..env.env import BuildEnv
 from ..task.observation_names import environment_names
@@ -97,7 +98,8 @@ def film_staged(
     root = staging_folder(out, episode)
     shutil.rmtree(root, ignore_errors=True)
     files = fmt.EpisodeFiles(root, episode, config.fps, features(env, config))
-    end, row = film_episode(env, files, config, on_frame, learner)
+    tape = EpisodeTape(root / EPISODES_FOLDER / episode_name(episode), config.first_seed + episode)
+    end, row = film_episode(env, files, config, on_frame, learner, tape)
     files.commit()  # into the staging folder: the dataset sees nothing yet
     return {"episode": episode, "end": end, "randomization": env.drawn, "row": row}
 
@@ -143,9 +145,11 @@ def film_episode(
     config: RecordConfig,
     on_frame: Callable[[int, int], Any] | None,
     learner: Any = None,
+    tape: EpisodeTape | None = None,
 ) -> tuple[Any, dict[str, Any]]:
-    """Roll the expert out into `files` (a `learner` driving DAgger's share of it); how it
-    ended and its metadata row. A run stopped midway leaves none of the episode's files."""
+    """Roll the expert out into `files` (a `learner` driving DAgger's share of it; the
+    bodies' poses into `tape`); how it ended and its metadata row. A run stopped midway
+    leaves none of the episode's files."""
     frames = 0
 
     def keep(frame: Frame) -> None:
@@ -160,7 +164,11 @@ def film_episode(
         scale = env.config.robot_description.length_scale
         bound = partial(bounded, env.mode, scale=scale)
         mixer = None if learner is None else Mixer(learner, config.fps, seed, config.beta, bound)
-        end = expert_episode(env, seed, config.cameras, keep, config.noise, mixer)
+        rolled = env if tape is None else cast(BuildEnv, Taping(env, tape))
+        end = expert_episode(rolled, seed, config.cameras, keep, config.noise, mixer)
+        if tape is not None:
+            ended = "success" if end.success else f"failure ({end.failure})"
+            tape.save(f"{env.plan.spec.name}, episode {files.episode} (seed {seed}): {ended}")
         return end, files.close()
     except BaseException:
         files.abort()

@@ -30,6 +30,7 @@ LEFT_BY_A_FIRST_RUN = (
     r"data/chunk-\d{3}/(file-\d{3}\.parquet|\.file-\d{3}\..*\.part)",
     r"videos/[^/]+/chunk-\d{3}/(file-\d{3}\.mp4|\.file-\d{3}\..*\.part)",
     re.escape(STAGING) + r"/.*",
+    r"replay/(episode_\d{6}|meshes_[0-9a-f]+)\.npz",  # the episodes' poses, for a replay
     re.escape(LOCK_NAME),
 )
 SHOWN = 3  # foreign files named in a refusal

@@ -22,6 +22,7 @@ import pyarrow.parquet as pq
 from ...errors import PyramidSimError
 from ...jobs.runner import run_jobs
 from ...output.files import atomic_path, move_into_place
+from ...output.replay_tape import EPISODES_FOLDER
 from ..dataset import lerobot_format as fmt
 
 STAGING = ".staging"
@@ -143,6 +144,9 @@ def land(out: Path, result: dict[str, Any], first: int) -> dict[str, Any]:
         pq.write_table(table, tmp, compression="snappy")
     for video in root.glob("videos/*/*/*.mp4"):
         move_into_place(video, out / video.relative_to(root))
+    for taped in sorted(root.glob(f"{EPISODES_FOLDER}/*.npz")):  # its poses, for a replay
+        if taped.name.startswith("episode_") or not (out / taped.relative_to(root)).exists():
+            move_into_place(taped, out / taped.relative_to(root))
     shutil.rmtree(root, ignore_errors=True)
     row["dataset_from_index"], row["dataset_to_index"] = first, first + row["length"]
     stats = dict(row["stats"])
