@@ -59,7 +59,24 @@ def make_parser() -> a.Parser:
             help="build at every point of a parameter grid; writes DIR/sweep.csv and a plot",
         )
     )
-    scene = sub.add_parser("scene", help="write the compiled scene of a build (.mjb or .xml)")
+    _add_scene(sub.add_parser("scene", help="write the compiled scene of a build (.mjb or .xml)"))
+    add_record_args(
+        sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
+    )
+    add_evaluate_args(
+        sub.add_parser("evaluate", help="score a policy over held-out seeds: DIR/evaluation.json")
+    )
+    add_replay_args(
+        sub.add_parser("replay", help="a run's 3D replay as one HTML page that opens from disk")
+    )
+    _add_reach(
+        sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
+    )
+    return parser
+
+
+def _add_scene(scene: a.Parser) -> None:
+    """`scene`'s arguments: the build's, and the file the compiled model goes to."""
     a.add_structure_args(scene)
     a.add_physics_args(scene)
     scene.add_argument(
@@ -70,16 +87,10 @@ def make_parser() -> a.Parser:
         help="FILE.mjb (MuJoCo's binary model) or FILE.xml (MJCF)",
     )
     add_overwrite_arg(scene, "a FILE")
-    add_record_args(
-        sub.add_parser("record", help="the expert's builds as a LeRobot dataset (v3.0) in DIR")
-    )
-    add_evaluate_args(
-        sub.add_parser("evaluate", help="score a policy over held-out seeds: DIR/evaluation.json")
-    )
-    add_replay_args(
-        sub.add_parser("replay", help="a run's 3D replay as one HTML page that opens from disk")
-    )
-    reach = sub.add_parser("reach", help="the largest size of each structure within reach, by IK")
+
+
+def _add_reach(reach: a.Parser) -> None:
+    """`reach`'s arguments: the robot, the arm set, and whether any layout is checked."""
     a.add_robot_arg(reach)
     arm_sets = (*ARM_CHOICES, "all")
     reach.add_argument(
@@ -96,7 +107,6 @@ def make_parser() -> a.Parser:
         "the learning environment's layout variation puts it (checked at its region's 16 "
         "corners: several times the IK work) (default: the arms' columns alone)",
     )
-    return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
