@@ -3,6 +3,7 @@
 redescribed or added without the table made afresh fails here (`python3
 scripts/task_flags_table.py` writes it)."""
 
+import json
 from dataclasses import fields
 from pathlib import Path
 
@@ -52,3 +53,46 @@ def test_a_flag_reads_into_the_spec(tmp_path):
     )
     assert (spec.brick_poses, spec.all_goals, spec.fps, spec.linger) == (False, True, 10, 0.5)
     assert spec.image_size == (64, 96)
+
+
+def _trained_checkpoint(folder: Path) -> str:
+    """A checkpoint folder whose training (lerobot-train's saved env) was the anchored mode at
+    10 fps, its observation without the bricks' poses."""
+    folder.mkdir()
+    output = {"action": {"type": "ACTION", "shape": [12]}}  # anchored: 6 a hand
+    (folder / "config.json").write_text(json.dumps({"type": "act", "output_features": output}))
+    env = {
+        "type": "pyramid_sim",
+        "robot": "panda",
+        "task": "pyramid-even",
+        "layers": 1,
+        "variation": "layout",
+        "fps": 10,
+        "action_mode": "anchored",
+        "brick_poses": False,
+    }
+    (folder / "train_config.json").write_text(json.dumps({"env": env}))
+    return str(folder)
+
+
+def test_record_with_a_checkpoint_reads_its_training_as_evaluate_does(tmp_path):
+    from pyramid_sim.cli.episode_args import as_trained
+
+    checkpoint = _trained_checkpoint(tmp_path / "ckpt")
+    args = as_trained(_record().parse_args(["--policy", checkpoint]))
+    assert (args.fps, args.action_mode, args.layers, args.brick_poses) == (10, "anchored", 1, False)
+    plain = as_trained(_record().parse_args([]))  # no policy: the defaults
+    assert (plain.fps, plain.action_mode, plain.structure, plain.brick_poses) == (
+        25,
+        "joint",
+        "pyramid-even",
+        True,
+    )
+
+
+def test_record_with_a_checkpoint_refuses_a_rate_it_was_not_trained_at(refused, tmp_path):
+    checkpoint = _trained_checkpoint(tmp_path / "ckpt")
+    out = tmp_path / "d"
+    err = refused(["record", "--policy", checkpoint, "--fps", "25", "--out", str(out), "--quiet"])
+    assert "fps: 25 given, but the checkpoint was trained with 10" in err
+    assert not out.exists()
