@@ -3,7 +3,7 @@
 
     python benchmarks/hashes.py [--part env|record|build|all] [--json PATH] [--compare PATH]
 
-`env`: for each action mode and robot (and each mode on the Panda pair with no motion
+`env`: for each registered action mode and each robot it is offered for (and each mode on the Panda pair with no motion
 generator), the expert (`env.expert_action()`) drives the 2-brick `pyramid-even --layers 1`
 at the `layout` variation over seeds 100000 and 100001 (hand modes at 10 fps, joint modes at
 25), and every action, reward and joint position (`qpos`) goes into one sha256. `record`: an
@@ -30,12 +30,14 @@ from pyramid_sim.output.claims import check_file
 from pyramid_sim.output.files import check_writable_dir, write_json_atomic
 
 # each mode at its frame rate: the hand modes' 10 fps, the joint modes' 25
-MODES = (("joint", 25), ("relative", 25), ("ee", 10), ("waypoint", 10), ("anchored", 10))
+HAND_FPS, JOINT_FPS = 10, 25
 ROBOTS = ("panda", "baxter", "so101")
 RAW_ROBOT = "panda"  # each mode once more with no motion generator (`limit_commands=False`)
 SEEDS = (100_000, 100_001)
-RECORD = ("record --structure pyramid-even --layers 1 --episodes 2 --variation layout "
-          "--cameras none --linger 2 --quiet")  # fmt: skip
+RECORD = (
+    "record --structure pyramid-even --layers 1 --episodes 2 --variation layout "
+    "--cameras none --linger 2 --quiet"
+)
 RECORD_MODES = (("anchored", "--fps 10 --noise 0.005"), ("relative", "--fps 25 --noise 0.005"))
 BUILD = "build --structure pyramid-even --quiet --layers"
 BUILD_LAYERS = (2, 4)  # 4: the README's
@@ -52,9 +54,14 @@ def env_hash(mode: str, fps: int, robot: str, limit: bool = True) -> tuple[str, 
     from pyramid_sim.learning.recording.episode import step_limit
 
     env = BuildEnv(
-        "pyramid-even", layers=1, robot=robot, variation="layout", fps=fps,
-        action_mode=mode, limit_commands=limit,
-    )  # fmt: skip
+        "pyramid-even",
+        layers=1,
+        robot=robot,
+        variation="layout",
+        fps=fps,
+        action_mode=mode,
+        limit_commands=limit,
+    )
     digest, ends = hashlib.sha256(), []
     for seed in SEEDS:
         env.reset(seed=seed)
@@ -128,6 +135,21 @@ def build_hash(layers: int) -> tuple[str, str]:
     return hashlib.sha256(text.encode()).hexdigest(), json.dumps(summary)
 
 
+def modes() -> list[tuple[str, int, tuple[str, ...]]]:
+    """Every registered mode, its frame rate and the robots it is offered for (the registry's
+    `UNBUILT_MODES` refuses some up front)."""
+    from pyramid_sim.learning.action_modes.registry import MODES, UNBUILT_MODES
+
+    return [
+        (
+            name,
+            HAND_FPS if cls.hand_poses else JOINT_FPS,
+            tuple(r for r in ROBOTS if name not in UNBUILT_MODES.get(r, {})),
+        )
+        for name, cls in MODES.items()
+    ]
+
+
 def parse(argv: list[str] | None) -> tuple[argparse.Namespace, dict[str, Any] | None]:
     """The flags, and the kept fingerprints to compare with, every one checked before any
     fingerprint is taken: a --json file already there is kept unless --overwrite (and it is
@@ -179,12 +201,12 @@ def main(argv: list[str] | None = None) -> int:
 def _run(args: argparse.Namespace, compared: dict[str, Any] | None) -> int:
     found: dict[str, dict[str, str]] = {}
     if args.part in ("env", "all"):
-        for mode, fps in MODES:
-            for robot in ROBOTS:
+        for mode, fps, robots in modes():
+            for robot in robots:
                 digest, ends = env_hash(mode, fps, robot)
                 found[f"env {mode} {robot}"] = {"sha256": digest, "ends": ends}
                 print(f"env {mode:<8} {robot:<10} {digest[:16]}  {ends}", flush=True)
-        for mode, fps in MODES:
+        for mode, fps, _ in modes():
             digest, ends = env_hash(mode, fps, RAW_ROBOT, limit=False)
             found[f"env {mode} {RAW_ROBOT} raw"] = {"sha256": digest, "ends": ends}
             print(f"env {mode:<8} {RAW_ROBOT + ' raw':<10} {digest[:16]}  {ends}", flush=True)

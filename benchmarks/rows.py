@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from pyramid_sim.choices import ACTION_MODE_TRACKS, RECORD_IMAGE_SIZE
+from pyramid_sim.learning.task.spec import TaskSpec
 from pyramid_sim.robots import DEFAULT_ROBOT
 
 
@@ -90,6 +91,24 @@ class Recipe:
         """keypose or continuous: the track the leaderboard reports the row in (as RLBench
         reports its keyframe methods apart from continuous control)."""
         return ACTION_MODE_TRACKS[self.action_mode]
+
+    @property
+    def task(self) -> TaskSpec:
+        """The row's task spec, checked as every caller's is: what its demonstrations are
+        recorded on and its policy scored on (`pyramid_sim.record(recipe.task, ...)`)."""
+        return TaskSpec(
+            self.structure,
+            layers=self.layers,
+            robot=self.robot,
+            variation=self.variation,
+            fps=self.fps,
+            action_mode=self.action_mode,
+            cameras=self.cameras,
+            image_size=self.image_size,
+            brick_poses=self.brick_poses,
+            all_goals=self.all_goals,
+            linger=self.linger,
+        )
 
 
 # the six-brick pyramid: DART's 5 mm over six bricks left a third of the demos built, 3 mm

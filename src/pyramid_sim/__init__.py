@@ -31,6 +31,7 @@ from .core.seed_pyramids import (
 from .core.structures import STRUCTURES, StructureSpec
 from .errors import ConfigError, MachineError, PyramidSimError, UnreachableError
 from .learning.task.observation_names import environment_names
+from .learning.task.spec import TaskSpec
 from .output.result import BrickResult, BuildResult, Tolerances
 from .params import PARAMS, Param
 from .version import __version__
@@ -82,6 +83,7 @@ __all__ = [
     "SimConfig",
     "StructureSpec",
     "Task",
+    "TaskSpec",
     "Tolerances",
     "UnreachableError",
     "VideoConfig",

@@ -16,9 +16,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .choices import (
-    DEFAULT_VARIATION,
     EVAL_FIRST_SEED,
     RECORD_CAMERAS,
+    RECORD_FPS,
     RECORD_IMAGE_SIZE,
     RECORD_LINGER,
     ArmChoice,
@@ -26,8 +26,9 @@ from .choices import (
 from .config import SimConfig, VideoConfig, check_film
 from .core.plan import Plan, make_plan
 from .errors import ConfigError, MachineError
+from .learning.recording.record_config import RUN_KEYWORDS
+from .learning.task.spec import TaskSpec, check_keywords, strict_bool
 from .options import (
-    SIZE_KEYWORDS,
     callback_argument,
     resolve,
     settings,
@@ -112,8 +113,16 @@ def build(
     return result
 
 
-BUILD_KEYWORDS = ("arms", "video", "snapshot", "video_config", "out", "on_start", "on_placed",
-                  "on_frame")  # fmt: skip
+BUILD_KEYWORDS = (
+    "arms",
+    "video",
+    "snapshot",
+    "video_config",
+    "out",
+    "on_start",
+    "on_placed",
+    "on_frame",
+)
 
 
 def _physics(render: bool) -> tuple[Callable[..., Plan], Callable[..., BuildResult]]:
@@ -153,70 +162,57 @@ def _prepare_gl(render: bool) -> None:
         import_physics_for_rendering()
 
 
-# record's own keywords: not settings of the build
-RECORD_KEYWORDS = ("out", "episodes", "seed", "fps", "cameras", "image_size", "variation",
-                   "randomize", "workers", "backend", "ray_address", "noise", "linger",
-                   "action_mode", "policy", "beta", "brick_poses", "all_goals", "on_frame", "on_episode",
-                   "arms", "repair")  # fmt: skip
+# A recording's defaults where a task spec's differ: a default recording's frame rate,
+# cameras, image size and linger (lerobot's plugin evaluates with the same)
+RECORD_DEFAULTS = {
+    "fps": RECORD_FPS,
+    "cameras": RECORD_CAMERAS,
+    "image_size": RECORD_IMAGE_SIZE,
+    "linger": RECORD_LINGER,
+}
+RECORD_OWN = ("out", "episodes", "seed", "on_frame", "on_episode", "repair")
 
 
 def record(
-    name: str = "pyramid-even",
+    task: TaskSpec | str = "pyramid-even",
     *old_order: Any,
     out: str | Path | None = None,
-    arms: ArmChoice = "both",
     episodes: int = 1,
     seed: int = 0,
-    fps: int = 25,
-    cameras: tuple[str, ...] = RECORD_CAMERAS,
-    image_size: tuple[int, int] = RECORD_IMAGE_SIZE,
-    variation: str = DEFAULT_VARIATION,
-    randomize: tuple[str, ...] = (),
-    workers: int = 1,
-    backend: str = "process",
-    ray_address: str | None = None,
-    noise: float = 0.0,
-    linger: float = RECORD_LINGER,
-    action_mode: str = "joint",
-    policy: str | None = None,
-    beta: float = 0.5,
-    brick_poses: bool = True,
-    all_goals: bool = True,
     on_frame: Any = None,
     on_episode: Any = None,
-    repair: bool = False,
-    config: SimConfig | None = None,
     **options: Any,
 ) -> Recorded:
-    """Record the expert building `name` as a LeRobot dataset (v3.0) in the folder `out`:
-    `episodes` builds from seeds `seed`, `seed` + 1, ... at `fps`, `cameras` at `image_size`,
-    each drawn at `variation` with its `randomize` parts; `workers` at once (`backend="ray"`:
-    Ray tasks, at `ray_address`). `noise` is DART's (rad on each joint in the joint modes, m on
-    each hand's x, y, z in the hand modes); a success goes on `linger` s more. With `policy` (as
-    `evaluate` takes one), a DAgger round: it drives the 2 s spans the expert does not (a share
-    `beta`), the expert labelling every frame. Without `brick_poses`, the bricks' poses (and
-    the goals' fill) are left out of the observation; without `all_goals`, every goal but each
-    arm's next. Episodes in `out` are kept; a folder holding anything else, or a damaged
-    episode (unless `repair`), is refused. `on_frame(episode, frames so far)` and
-    `on_episode(episodes in the dataset)` hear progress; `options` as for `build`."""
+    """Record the expert's episodes of `task` (a TaskSpec, or a structure's name with the
+    spec's keywords in `options`: its fields, sizes and settings) as a LeRobot dataset (v3.0) in
+    the folder `out`: `episodes` builds from seeds `seed`, `seed` + 1, ... By name, a
+    recording's defaults stand where a spec's differ (25 fps, the overview and wrist cameras at
+    224 x 224, 2 s of linger). The run's own keywords: `workers` at once (`backend="ray"`: Ray
+    tasks, at `ray_address`); `noise`, DART's (rad on each joint in the joint modes, m on each
+    hand's x, y, z in the hand modes); with `policy` (as `evaluate` takes one), a DAgger round:
+    it drives the 2 s spans the expert does not (a share `beta`), the expert labelling every
+    frame. Episodes in `out` are kept; a folder holding anything else, or a damaged episode
+    (unless `repair=True`), is refused. `on_frame(episode, frames so far)` and
+    `on_episode(episodes in the dataset)` hear progress."""
     folder = _dataset_folder(old_order, out)
-    config, spec = resolve(name, config, dict(options), own=RECORD_KEYWORDS)
+    run = {k: options.pop(k) for k in RUN_KEYWORDS if k in options}
+    repair = strict_bool("repair", options.pop("repair", False))
+    check_keywords(options, (*RUN_KEYWORDS, *RECORD_OWN))
+    if not isinstance(task, TaskSpec):
+        task = TaskSpec.of(task, **{**RECORD_DEFAULTS, **options})
+    elif options:
+        TaskSpec.of(task, **options)  # ConfigError: a whole spec takes no keyword beside it
     for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
         callback_argument(hook, what)
-    from .learning.recording.record import RecordConfig
-    from .learning.recording.record import record as run
+    from .learning.recording.record import record as run_recording
+    from .learning.recording.record_config import recording_of
 
-    sizes = {k: options[k] for k in SIZE_KEYWORDS if k in options}
-    settings_ = RecordConfig(
-        name, {**sizes, "arms": arms, "config": config}, episodes, seed, fps, cameras,
-        image_size, variation, randomize, True, workers, backend, ray_address, noise,
-        action_mode, linger, policy, beta, bool(brick_poses), bool(all_goals),
-    )  # fmt: skip
-    _prepare_gl(render=bool(settings_.cameras))
+    wanted = recording_of(task, episodes, seed, **run)
+    _prepare_gl(render=bool(wanted.cameras))
     from .learning.evaluation.policies import make_policy
 
     with written.held([(folder, "out")]):
-        return run(folder, settings_, on_frame, on_episode, make_policy, repair=bool(repair))
+        return run_recording(folder, wanted, on_frame, on_episode, make_policy, repair=repair)
 
 
 def _dataset_folder(old_order: tuple[Any, ...], out: str | Path | None) -> Path:
@@ -233,68 +229,53 @@ def _dataset_folder(old_order: tuple[Any, ...], out: str | Path | None) -> Path:
     return folder
 
 
-EVALUATE_KEYWORDS = ("out", "variation", "fps", "episodes", "seed", "video", "max_steps",
-                     "action_mode", "workers", "backend", "ray_address", "on_episode",
-                     "arms")  # fmt: skip
+# evaluate's own keywords beside a task spec's: the run's, and where its results go
+EVALUATE_RUN = ("max_steps", "workers", "backend", "ray_address")
+EVALUATE_OWN = ("out", "episodes", "seed", "video", "on_episode")
 
 
 def evaluate(
     policy: str = "expert",
-    name: str | None = None,
+    task: TaskSpec | str | None = None,
     *,
     out: str | Path | None = None,
-    arms: ArmChoice = "both",
-    variation: str | None = None,
-    fps: int | None = None,
     episodes: int = 10,
     seed: int = EVAL_FIRST_SEED,
     video: int = 0,
-    max_steps: int | None = None,
-    action_mode: str | None = None,
-    workers: int = 1,
-    backend: str = "process",
-    ray_address: str | None = None,
     on_episode: Any = None,
-    config: SimConfig | None = None,
     **options: Any,
 ) -> Evaluation:
     """Score `policy` (expert, zero, random, `module:factory`, or a lerobot checkpoint folder)
-    on `name` over `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from
-    recordings, which start at 0) at `variation` and `fps`; with `out`, write
-    `out/evaluation.json` and film the first `video` episodes, the policy acting in
-    `action_mode`. A checkpoint is evaluated as it was trained: its cameras, and the robot,
-    structure, size, variation, fps and action mode its training saw where not given (a given
-    one that contradicts it is refused, but the variation); otherwise pyramid-even, layout, 25
-    and joint. `workers` episodes run at once, in processes or as Ray tasks (`backend="ray"`,
-    at `ray_address` or a Ray started here), scoring as one worker does. `options` as for
-    `build`. Returns the `Evaluation` (its scores as evaluation.json has them)."""
+    on `task` (a TaskSpec, or a structure's name with the spec's keywords in `options`) over
+    `episodes` episodes from seeds `seed`, `seed` + 1, ... (held out from recordings, which
+    start at 0); with `out`, write `out/evaluation.json` and film the first `video` episodes.
+    A checkpoint is evaluated as it was trained: its cameras, and the robot, structure, size,
+    variation, fps and action mode its training saw where not given (a given one that
+    contradicts it is refused, but the variation); otherwise pyramid-even, layout, 25 and
+    joint. The run's own keywords: `max_steps`, an episode's step limit; `workers` episodes at
+    once, in processes or as Ray tasks (`backend="ray"`, at `ray_address` or a Ray started
+    here), scoring as one worker does. Returns the `Evaluation` (its scores as
+    evaluation.json has them)."""
     from .learning.evaluation.policies import check_spec
-    from .learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
+    from .learning.evaluation.trained_task import task_given, task_settled
+    from .learning.lerobot_plugin.checkpoint_inputs import checkpoint_task, checkpoint_views
 
     callback_argument(on_episode, "on_episode")
     folder = written.results_folder(out)
     policy = check_spec(policy)
-    options = dict(options)
-    sizes = {k: options.pop(k) for k in SIZE_KEYWORDS if k in options}
-    robot = config.robot if isinstance(config, SimConfig) else options.get("robot")
-    task = checkpoint_task(policy, Task(robot, name, sizes, variation, fps, action_mode))
-    assert task.structure is not None and task.variation is not None and task.fps is not None
-    if config is None:
-        options["robot"] = task.robot
-    config, spec = resolve(task.structure, config, {**options, **task.size}, own=EVALUATE_KEYWORDS)
-    from .learning.evaluation.config import EvaluateConfig  # MuJoCo: once the task is settled
-    from .learning.evaluation.evaluate import evaluate as run
-
+    run = {k: options.pop(k) for k in EVALUATE_RUN if k in options}
+    check_keywords(options, (*EVALUATE_RUN, *EVALUATE_OWN))
+    settled = checkpoint_task(policy, task_given(task, options))
     views = checkpoint_views(policy)  # a policy trained on cameras sees them again
-    wanted = EvaluateConfig(
-        policy, task.structure, {**task.size, **views, "arms": arms, "config": config},
-        task.variation, task.fps, episodes, seed, video, max_steps, task.action_mode or "joint",
-        workers, backend, ray_address,
-    )  # fmt: skip
+    spec = task_settled(task, options, settled, views)
+    from .learning.evaluation.config import evaluation_of  # MuJoCo: once the task is settled
+    from .learning.evaluation.evaluate import evaluate as run_evaluation
+
+    wanted = evaluation_of(policy, spec, {**settled.size, **views}, episodes, seed, video, **run)
     if video and folder is None:
         raise ConfigError("video: films need out; accepted a folder to write them in")
-    _prepare_gl(render=bool(video or views))
+    _prepare_gl(render=bool(video or spec.cameras))
     if folder is None:
-        return run(wanted, None, on_episode)
+        return run_evaluation(wanted, None, on_episode)
     with written.held([(folder, "out")]):
-        return run(wanted, folder, on_episode)
+        return run_evaluation(wanted, folder, on_episode)

@@ -4,6 +4,7 @@ command line and the settings' checks read: one list of each, here."""
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Literal, get_args
 
 Arm = Literal["left", "right"]
@@ -22,36 +23,56 @@ BACKENDS: tuple[Backend, ...] = get_args(Backend)
 # How much one learning episode differs from the next (learning/task/variation.py).
 VARIATIONS = ("fixed", "layout", "full")
 DEFAULT_VARIATION = "layout"
-# What an environment's action is (learning/action_modes/registry.py has a class for each name):
-# joint targets, each joint's change from where it is (relative), each hand's pose change (ee),
-# or the pose each hand goes to (waypoint), or that pose from the pick location, the arm's clear
-# pose or its next target (anchored), or each hand's bounded pose change from where it is
-# measured (delta), or each hand's pose in the world bounded as a delta is (absolute); a
-# recording writes all but ee. The last five are hand poses, turned into joints by the IK.
-ACTION_MODES = ("joint", "relative", "ee", "waypoint", "anchored", "delta", "absolute")
-# Each in a few words, for the command line's help.
-ACTION_MODE_WORDS = {
-    "joint": "joint targets",
-    "relative": "relative (each joint's change from where it is: what a learner predicts most "
-    "precisely)",
-    "ee": "ee (each hand's pose change)",
-    "waypoint": "waypoint (the pose each hand goes to)",
-    "anchored": "anchored (that pose from the pick location, the arm's clear pose or its next "
-    "target)",
-    "delta": "delta (each hand's pose change from where it is measured, bounded)",
-    "absolute": "absolute (each hand's pose in the world, bounded as a delta is)",
+
+
+@dataclass(frozen=True)
+class ModeWords:
+    """What is known of an action mode without MuJoCo (learning/action_modes/registry.py has
+    a class for each name, and a test holds the two equal): the mode in a few words for the
+    command line's help, the entries of each hand's action in the hand-pose modes (None: each
+    joint's target or change, and the gap), the track a leaderboard reports it in (a keypose
+    policy picks each hand's pose and the simulator moves the arm between them, a continuous
+    one commands the arm every step, nothing in its action copied from the observation), and
+    whether a recording writes it."""
+
+    words: str
+    hand_entries: int | None
+    track: str
+    recorded: bool = True
+
+
+# What an environment's action is, one declaration a mode: joint targets, each joint's change
+# from where it is (relative), each hand's pose change (ee), the pose each hand goes to
+# (waypoint), that pose from the pick location, the arm's clear pose or its next target
+# (anchored), each hand's bounded pose change from where it is measured (delta), or each
+# hand's pose in the world bounded as a delta is (absolute). The last five are hand poses,
+# turned into joints by the IK.
+MODES: dict[str, ModeWords] = {
+    "joint": ModeWords("joint targets", None, "continuous"),
+    "relative": ModeWords(
+        "relative (each joint's change from where it is: what a learner predicts most precisely)",
+        None,
+        "continuous",
+    ),
+    "ee": ModeWords("ee (each hand's pose change)", 5, "continuous", recorded=False),
+    "waypoint": ModeWords("waypoint (the pose each hand goes to)", 5, "keypose"),
+    "anchored": ModeWords(
+        "anchored (that pose from the pick location, the arm's clear pose or its next target)",
+        6,
+        "keypose",
+    ),
+    "delta": ModeWords(
+        "delta (each hand's pose change from where it is measured, bounded)", 5, "continuous"
+    ),
+    "absolute": ModeWords(
+        "absolute (each hand's pose in the world, bounded as a delta is)", 5, "continuous"
+    ),
 }
-RECORD_ACTION_MODES = ("joint", "relative", "waypoint", "anchored", "delta", "absolute")
-# The entries of each hand's action in the hand-pose modes (None: each joint's target or
-# change, and the gap), known without MuJoCo (the registry's classes say the same: a test
-# holds them equal), and the track a leaderboard reports each mode in: a keypose policy picks
-# each hand's pose and the simulator moves the arm between them, a continuous one commands
-# the arm every step, nothing in its action copied from the observation.
-ACTION_MODE_HAND_ENTRIES = {"joint": None, "relative": None, "ee": 5, "waypoint": 5, "anchored": 6,
-                            "delta": 5, "absolute": 5}  # fmt: skip
-ACTION_MODE_TRACKS = {"joint": "continuous", "relative": "continuous", "ee": "continuous",
-                      "waypoint": "keypose", "anchored": "keypose",
-                      "delta": "continuous", "absolute": "continuous"}  # fmt: skip
+ACTION_MODES = tuple(MODES)
+ACTION_MODE_WORDS = {name: mode.words for name, mode in MODES.items()}
+RECORD_ACTION_MODES = tuple(name for name, mode in MODES.items() if mode.recorded)
+ACTION_MODE_HAND_ENTRIES = {name: mode.hand_entries for name, mode in MODES.items()}
+ACTION_MODE_TRACKS = {name: mode.track for name, mode in MODES.items()}
 # A dataset's frame rates, an environment's step rates (each divides the 100 Hz control).
 FPS_CHOICES = (10, 20, 25, 50, 100)
 # What a recording films by default, and at what size (height, width): lerobot's plugin
@@ -79,6 +100,10 @@ __all__ = [
     "in_words",
     "ACTION_MODES",
     "ACTION_MODE_WORDS",
+    "ACTION_MODE_HAND_ENTRIES",
+    "ACTION_MODE_TRACKS",
+    "MODES",
+    "ModeWords",
     "RECORD_ACTION_MODES",
     "FPS_CHOICES",
     "ENV_ID",

@@ -53,12 +53,15 @@ class PyramidSimEnv(EnvConfig):
 
     def __post_init__(self) -> None:
         from pyramid_sim.learning.action_modes.registry import action_size
+        from pyramid_sim.learning.lerobot_plugin.plugin_task import plugin_task, step_limit_given
 
-        bricks = len(pyramid_sim.plan(self.task, layers=self.layers, robot=self.robot).bricks)
+        spec = plugin_task(self)  # ConfigError naming a field, as every caller's spec
+        bricks = len(pyramid_sim.plan(spec.structure, layers=spec.layers, robot=spec.robot).bricks)
         if self.episode_length is None:  # MuJoCo's import: only when this env is asked for
             from pyramid_sim.learning.recording.episode import step_limit
 
             self.episode_length = step_limit(bricks, self.fps)
+        self.episode_length = step_limit_given(self.episode_length)
         # each arm's joints and its gripper: 16 for the Panda pair and Baxter, 12 for the SO-101s
         motors = sum(len(arm.joints) + 1 for arm in robot(self.robot).arms.values())
         actions = action_size(self.action_mode, robot(self.robot))  # the mode's own count
@@ -96,16 +99,7 @@ class PyramidSimEnv(EnvConfig):
 
     @property
     def gym_kwargs(self) -> dict[str, Any]:
-        return {
-            "structure": self.task,
-            "layers": self.layers,
-            "robot": self.robot,
-            "variation": self.variation,
-            "fps": self.fps,
-            "cameras": tuple(self.cameras),
-            "image_size": (self.observation_height, self.observation_width),
-            "action_mode": self.action_mode,
-            "brick_poses": self.brick_poses,
-            "all_goals": self.all_goals,
-            "max_episode_steps": self.episode_length,
-        }
+        from pyramid_sim.learning.lerobot_plugin.plugin_task import plugin_task
+
+        # the environment takes the task spec whole (`make_lerobot_env`)
+        return {"structure": plugin_task(self), "max_episode_steps": self.episode_length}

@@ -132,7 +132,7 @@ def output_path(what: str, *, folder: bool) -> Callable[[str], Path]:
 
 
 def _size_help(option: str) -> str:
-    users = [f"{n} ({d[option]})" for n, (_, d) in STRUCTURES.items() if option in d]
+    users = [f"{n} ({d.sizes[option]})" for n, d in STRUCTURES.items() if option in d.sizes]
     return f"{', '.join(users)}; accepted {SIZE_FLAGS[option][1]} (defaults in brackets)"
 
 

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import argparse
 
-from ..choices import ACTION_MODE_WORDS, FPS_CHOICES
 from ..config import SimConfig
 from ..core.structures import StructureSpec
 from ..errors import ConfigError
 from ..output.files import check_writable_dir
 from ..params import EPISODES
-from .args import config_from_args, spec_from_args, whole
+from .args import SIZE_FLAGS, config_from_args, size_options, spec_from_args, whole
+from .task_flags import EPISODE_FIELDS, add_task_flags
 
 
 def add_episode_args(
@@ -18,7 +18,7 @@ def add_episode_args(
 ) -> None:
     """--episodes, --variation, --fps and --action-mode (of `modes`), as record and evaluate
     share them."""
-    from ..choices import DEFAULT_VARIATION, VARIATIONS
+    from ..choices import ACTION_MODE_WORDS, RECORD_FPS, VARIATIONS
 
     p.add_argument(
         "--episodes",
@@ -26,26 +26,9 @@ def add_episode_args(
         default=episodes,
         help=f"{what}, seeds --seed, --seed + 1, ... (default {episodes})",
     )
-    p.add_argument(
-        "--variation",
-        default=DEFAULT_VARIATION,
-        choices=VARIATIONS,
-        help="how episodes differ: fixed (DE NIRO's layout), layout (the feed spot, the "
-        "structure's place and turn drawn per episode) or full (the layout and every "
-        f"randomization) (default {DEFAULT_VARIATION})",
-    )
-    p.add_argument(
-        "--fps",
-        type=whole("fps", ", ".join(map(str, FPS_CHOICES))),
-        default=25,
-        help="the environment's step rate, a dataset's frames a second (of the 100 Hz "
-        "control): 10, 20, 25, 50 or 100 (default 25)",
-    )
-    p.add_argument(
-        "--action-mode",
-        default="joint",
-        choices=modes,
-        help=f"the action: {', '.join(ACTION_MODE_WORDS[m] for m in modes)} (default joint)",
+    words = {mode: ACTION_MODE_WORDS[mode] for mode in modes}
+    add_task_flags(
+        p, EPISODE_FIELDS, {"fps": RECORD_FPS}, {"variation": VARIATIONS, "action_mode": words}
     )
 
 
@@ -58,3 +41,34 @@ def episode_inputs(args: argparse.Namespace, verb: str) -> tuple[SimConfig, Stru
     if spec.goals is not None:
         raise ConfigError(f"structure: list is not {verb} yet; accepted the generated structures")
     return config, spec, dict(spec.size)
+
+
+def trained_defaults(p: argparse.ArgumentParser) -> None:
+    """The flags a checkpoint's training fills where not given (`as_trained`), not given by
+    default: the defaults the help names stand for them where no checkpoint says."""
+    p.set_defaults(robot=None, structure=None, variation=None, fps=None, action_mode=None)
+
+
+def as_trained(args: argparse.Namespace) -> argparse.Namespace:
+    """The flags, those not given filled as the policy was trained (a checkpoint's, as
+    `evaluate` and a DAgger round's `record --policy` read it) or with the defaults;
+    ConfigError for one that contradicts a checkpoint's training. A checkpoint that observed
+    no brick poses, or each arm's next goal alone, is fed the same."""
+    from ..learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task, checkpoint_views
+
+    policy = args.policy or "expert"  # no policy: the defaults
+    given = Task(
+        args.robot, args.structure, size_options(args), args.variation, args.fps, args.action_mode
+    )
+    task = checkpoint_task(policy, given)
+    sizes = {SIZE_FLAGS[k][0][2:].replace("-", "_"): v for k, v in task.size.items()}
+    settled = {
+        "robot": task.robot,
+        "structure": task.structure,
+        "variation": task.variation,
+        "fps": task.fps,
+        "action_mode": task.action_mode,
+    }
+    views = checkpoint_views(policy)
+    hidden = {k: v for k, v in views.items() if v is False}  # what its observation left out
+    return argparse.Namespace(**{**vars(args), **sizes, **settled, **hidden})

@@ -8,16 +8,14 @@ from pathlib import Path
 from ..choices import ACTION_MODES, EVAL_FIRST_SEED
 from ..params import MAX_STEPS, WORKERS
 from .args import (
-    SIZE_FLAGS,
     add_backend_args,
     add_out_args,
     add_physics_args,
     add_schedule_arg,
     add_structure_args,
-    size_options,
     whole,
 )
-from .episode_args import add_episode_args, episode_inputs
+from .episode_args import add_episode_args, as_trained, episode_inputs, trained_defaults
 from .paths import policies_from_here
 from .progress import Progress
 from .targets import add_overwrite_arg, check_evaluate_targets
@@ -65,8 +63,7 @@ def add_evaluate_args(p: argparse.ArgumentParser) -> None:
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/evaluation"))
     add_overwrite_arg(p, "an evaluation.json or film")
-    # not given: a checkpoint's training says, else the defaults the help names
-    p.set_defaults(robot=None, structure=None, variation=None, fps=None, action_mode=None)
+    trained_defaults(p)
 
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
@@ -101,18 +98,3 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         )
     print(evaluation.line())
     return 0
-
-
-def as_trained(args: argparse.Namespace) -> argparse.Namespace:
-    """The flags, those not given filled as the policy was trained (a checkpoint's) or with
-    the defaults; ConfigError for one that contradicts a checkpoint's training."""
-    from ..learning.lerobot_plugin.checkpoint_inputs import Task, checkpoint_task
-
-    given = Task(
-        args.robot, args.structure, size_options(args), args.variation, args.fps, args.action_mode
-    )
-    task = checkpoint_task(args.policy, given)
-    sizes = {SIZE_FLAGS[k][0][2:].replace("-", "_"): v for k, v in task.size.items()}
-    settled = {"robot": task.robot, "structure": task.structure, "variation": task.variation,
-               "fps": task.fps, "action_mode": task.action_mode}  # fmt: skip
-    return argparse.Namespace(**{**vars(args), **sizes, **settled})

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_IMAGE_SIZE, RECORD_LINGER
 from ..errors import ConfigError
-from ..params import BETA, LINGER, NOISE, WORKERS
+from ..params import BETA, NOISE, WORKERS
 from .args import (
     add_backend_args,
     add_out_args,
@@ -15,12 +15,12 @@ from .args import (
     add_schedule_arg,
     add_structure_args,
     bounded,
-    image_size,
     whole,
 )
-from .episode_args import add_episode_args, episode_inputs
+from .episode_args import add_episode_args, as_trained, episode_inputs, trained_defaults
 from .paths import policies_from_here
 from .progress import Progress
+from .task_flags import RECORD_FIELDS, add_task_flags, switches, task_values
 
 CAMERAS_DEFAULT = "overview,left_wrist,right_wrist"
 
@@ -34,29 +34,10 @@ def add_record_args(p: argparse.ArgumentParser) -> None:
     )
     add_schedule_arg(p)
     add_episode_args(p, 1, "whole builds", RECORD_ACTION_MODES)
-    p.add_argument(
-        "--cameras",
-        default=CAMERAS_DEFAULT,
-        metavar="A,B,...",
-        help="overview, front, top, left_wrist, right_wrist; none for no video "
-        f"(default {CAMERAS_DEFAULT})",
-    )
-    p.add_argument(
-        "--image-size",
-        type=image_size,
-        default=None,
-        metavar="H[xW]",
-        help="each camera's pixels, even; not with --cameras none (default 224)",
-    )
-    p.add_argument(
-        "--randomize",
-        default="",
-        metavar="A,B,...",
-        help="parts drawn per episode from its seed: all, none, or some of friction, "
-        "brick_mass, grip_force, pad_friction, spawn_jitter, brick_size, light, colours, "
-        "textures, camera, each once (default none)",
-    )
+    defaults = {"cameras": CAMERAS_DEFAULT, "image_size": None, "randomize": ""}
+    add_task_flags(p, RECORD_FIELDS[:3], defaults)
     _add_run_args(p)
+    trained_defaults(p)  # a DAgger round's checkpoint: its training's task
 
 
 def _add_run_args(p: argparse.ArgumentParser) -> None:
@@ -77,14 +58,7 @@ def _add_run_args(p: argparse.ArgumentParser) -> None:
         "each hand's x, y and z (m), off the expert's by an offset drawn every second from "
         f"N(0, SCALE), the expert's correction kept as the label; {NOISE.text} (default 0)",
     )
-    p.add_argument(
-        "--linger",
-        type=bounded(LINGER),
-        default=RECORD_LINGER,
-        metavar="SECONDS",
-        help="seconds an episode that built goes on being filmed: the last release and the "
-        f"hands leaving, taught as the first; {LINGER.text} (default {RECORD_LINGER:g})",
-    )
+    add_task_flags(p, ("linger",), {"linger": RECORD_LINGER})
     p.add_argument(
         "--repair",
         action="store_true",
@@ -92,19 +66,7 @@ def _add_run_args(p: argparse.ArgumentParser) -> None:
         "the frames their records claim) (default: refuse to resume over them)",
     )
     _add_dagger_args(p)
-    p.add_argument(
-        "--no-brick-poses",
-        action="store_true",
-        help="leave the bricks' poses (and which goals hold a brick, judged from them) out of "
-        "the observation: a policy that sees the bricks through its cameras alone (default: "
-        "observed)",
-    )
-    p.add_argument(
-        "--next-goals-only",
-        action="store_true",
-        help="leave every goal but each arm's next out of the observation, so its width is "
-        "the same whatever the structure's size (default: every goal observed)",
-    )
+    add_task_flags(p, switches(), {})
     add_backend_args(p, "episodes")
     add_out_args(p, Path("runs/dataset"))
 
@@ -123,10 +85,10 @@ def _add_dagger_args(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--beta",
         type=bounded(BETA),
-        default=0.5,
+        default=None,
         metavar="SHARE",
         help=f"with --policy, DAgger's beta: the share of spans the expert drives; {BETA.text} "
-        "(default 0.5)",
+        "(default 0.5; refused without --policy)",
     )
 
 
@@ -134,8 +96,13 @@ def cmd_record(args: argparse.Namespace) -> int:
     """Record what the dataset lacks; exit 1 if an episode's build failed (it is kept)."""
     import pyramid_sim
 
+    args = as_trained(args)  # --policy CKPT: the task its training saw, where not given
     config, spec, sizes = episode_inputs(args, "recorded")
-    cameras = _cameras(args.cameras, args.image_size)
+    flags = task_values(args)  # the spec's fields, as their flags gave them
+    flags["cameras"] = _cameras(args.cameras, args.image_size)
+    flags["image_size"] = args.image_size or RECORD_IMAGE_SIZE
+    flags["randomize"] = _names(args.randomize)
+    task = pyramid_sim.TaskSpec(spec.name, arms=args.arms, config=config, **sizes, **flags)
     if args.policy is not None:  # a DAgger round's learner, found as evaluate finds one
         policies_from_here()
     # the library holds --out, and removes it if it made it and fails
@@ -153,31 +120,18 @@ def cmd_record(args: argparse.Namespace) -> int:
             progress.advance_to(episodes)
 
         recorded = pyramid_sim.record(
-            spec.name,
+            task,
             out=args.out,
-            arms=args.arms,
             episodes=args.episodes,
             seed=config.seed,
-            fps=args.fps,
-            cameras=cameras,
-            image_size=args.image_size or RECORD_IMAGE_SIZE,
             on_frame=on_frame,
             on_episode=on_episode,
-            variation=args.variation,
-            randomize=_names(args.randomize),
             workers=args.workers,
             backend=args.backend,
             ray_address=args.ray_address,
             noise=args.noise,
-            linger=args.linger,
-            action_mode=args.action_mode,
-            policy=args.policy,
-            beta=args.beta,
-            brick_poses=not args.no_brick_poses,
-            all_goals=not args.next_goals_only,
+            **_driver(args.policy, args.beta),
             repair=args.repair,
-            config=config,
-            **sizes,
         )
         progress.advance_to(args.episodes)
     failed = (
@@ -190,6 +144,13 @@ def cmd_record(args: argparse.Namespace) -> int:
         f"frames{failed} -> {args.out}"
     )
     return 1 if recorded.failed else 0
+
+
+def _driver(policy: str | None, beta: float | None) -> dict[str, object]:
+    """A DAgger round's `policy` and `beta`, those given (beta without a policy is refused
+    by the recording)."""
+    given = {"policy": policy, "beta": beta}
+    return {k: v for k, v in given.items() if v is not None}
 
 
 def _cameras(text: str, size: tuple[int, int] | None) -> tuple[str, ...]:

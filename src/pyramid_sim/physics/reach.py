@@ -13,7 +13,7 @@ from ..core.plan import Plan, make_plan
 from ..core.poses import Pose
 from ..core.primitives import clear_pose, pick_steps, place_steps
 from ..core.scheduler import other
-from ..core.structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, StructureSpec
+from ..core.structures import MAX_COURSE, MAX_LAYERS, SIZE_KNOB, STRUCTURES, StructureSpec
 from ..errors import ConfigError, UnreachableError
 from . import names as c
 from .ik import DualArmIK
@@ -146,28 +146,15 @@ class ReachChecker:
 
 
 def resized(spec: StructureSpec, knob: str, value: int) -> StructureSpec:
-    """`spec` with its size knob set to `value`: a wall keeps three full courses (width,
-    width + 1 with the turned ends, width), a wall pyramid its layers within its base."""
-    if spec.name == "wall":
-        return replace(spec, width=value, bricks=3 * value + 1)
-    if spec.name == "wall-pyramid":
-        return replace(spec, width=value, layers=min(spec.layers or 1, value))
-    if spec.name == "corner-wall":  # two and a half courses, as the Brick Manager's 15 bricks of 6
-        return replace(spec, width=value, bricks=3 * (value + 1) - (value + 1) // 2)
-    sizes: dict[str, Any] = {knob: value}
+    """`spec` with its size knob set to `value`, the other options following it as the
+    structure declares (core/structures.py: a wall keeps three full courses)."""
+    sizes: dict[str, Any] = STRUCTURES[spec.name].resized(spec, value)
     return replace(spec, **sizes)
 
 
 def held_fixed(spec: StructureSpec) -> str:
     """How `resized` holds the other size options while the knob grows (the reach table)."""
-    if spec.name == "wall":
-        return "3 courses"
-    if spec.name == "wall-pyramid":
-        return f"layers=min({spec.layers}, width)"
-    if spec.name == "corner-wall":
-        return "2.5 courses"
-    knob = SIZE_KNOB[spec.name]
-    return " ".join(f"{k}={v}" for k, v in spec.size.items() if k != knob) or "-"
+    return STRUCTURES[spec.name].held_fixed(spec)
 
 
 def require_reachable(plan: Plan, config: SimConfig) -> None:

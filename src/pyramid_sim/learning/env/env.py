@@ -11,7 +11,8 @@ happens, whoever drives it; `ExpertPolicy` (`expert_action()`) is the scripted b
 the bricks are fed, where the structure stands, at `full` the physics and looks) from its seed:
 `reset(seed=s)` is the same episode bit for bit, `reset()` the next one of its stream.
 
-Reward: +1 for each brick that comes to rest on its target within the build's tolerances.
+Reward: +1 for each brick that comes to rest on its target within the build's tolerances, -1
+for each brick found there that is moved out of them.
 Terminated on success (every target holds a brick at rest; with `linger`, that many seconds
 later, the hands' letting go and leaving filmed too) or failure (`info["failure"]` says
 which: a brick off the table, arm-arm contact, a joint past its speed or torque limit, MuJoCo's
@@ -25,101 +26,72 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from ...choices import ArmChoice
-from ...options import resolve
 from ...output.result import Tolerances
-from ...params import LINGER
 from ...physics.loop import BuildLoop
 from ...physics.motion_generator import arm_motion
-from ...robots import RobotDescription
 from ..action_modes.mode import ModeParts
 from ..action_modes.registry import make_mode, mode_class
 from ..expert.closure import expert_loop
 from ..expert.policy import ExpertPolicy
 from ..task import layout as lay
-from ..task import randomize as rnd
-from ..task import variation as var
-from ..task.contract import check_modes, check_reset_options, require_live_episode
+from ..task.contract import check_reset_options, require_live_episode
 from ..task.episodes import EpisodeMaker
 from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
-from ..task.spaces import checked_action, goals, hidden, next_of, observation_space, pick, renderer
+from ..task.ranges import DEFAULT_FPS, control_steps
+from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
+from ..task.spec import TaskSpec
 from .action_check import not_bool
 from .control_steps import ControlSteps
 from .episode_state import EpisodeState
 
-OWN = ("arms", "variation", "fps", "limit_commands", "render_mode", "width", "height",
-       "camera_name", "cameras", "image_size", "randomize", "action_mode", "footprints",
-       "linger", "brick_poses", "all_goals")  # fmt: skip
-
 
 class BuildEnv(gymnasium.Env):
-    """Two arms build `structure`; keywords as `pyramid_sim.build` takes them, and the
-    environment's own (the module's docstring, docs/env.md)."""
+    """Two arms build a structure: the episode a task spec (`learning/task/spec.py`) makes,
+    given whole or as its keywords (the module's docstring, docs/env.md)."""
 
-    metadata = {"render_modes": ["rgb_array"], "render_fps": lay.DEFAULT_FPS}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": DEFAULT_FPS}
     _reset_needed = True  # Gymnasium's contract: reset before the first step
     footprints = True  # the targets drawn on the table for the cameras
     tolerances = Tolerances()  # what a placement is judged by
     _renderer: Any = None
     _eyes: Any = None  # the cameras' renderer, made at the first observation
 
-    def __init__(
-        self,
-        structure: str = "pyramid-even",
-        *,
-        arms: ArmChoice = "both",
-        variation: str = var.DEFAULT_LEVEL,
-        fps: int = lay.DEFAULT_FPS,
-        limit_commands: bool = True,
-        render_mode: str | None = None,
-        width: int = 640,
-        height: int = 480,
-        camera_name: str = "overview",
-        cameras: tuple[str, ...] = (),
-        image_size: tuple[int, int] = (224, 224),
-        randomize: tuple[str, ...] = (),
-        action_mode: str = "joint",
-        footprints: bool = True,
-        linger: float = 0.0,
-        brick_poses: bool = True,
-        all_goals: bool = True,
-        **options: Any,
-    ) -> None:
-        check_modes(action_mode, render_mode)
-        self.action_mode, self.render_mode = action_mode, render_mode
-        options = dict(options)
-        self.config, spec = resolve(structure, options.pop("config", None), options, own=OWN)
+    def __init__(self, structure: str | TaskSpec = "pyramid-even", **keywords: Any) -> None:
+        """The environment of a task spec (`TaskSpec`), given whole or as its keywords:
+        `gym.make(ENV_ID, structure=..., layers=..., fps=...)` builds the spec from them."""
+        self.task_spec = spec = TaskSpec.of(structure, **keywords)
+        self.action_mode, self.render_mode = spec.action_mode, spec.render_mode
+        self.config, self.structure_spec = spec.resolved()
         robot = self.config.robot_description
-        self.variation = var.check_level(variation)
-        self.randomize = var.randomized(variation, rnd.check_parts(tuple(randomize)))
-        self.control_steps = lay.control_steps(fps, self.config.motion.control_dt)
-        self.fps, self.dt = fps, 1.0 / fps
-        self.metadata = {**self.metadata, "render_fps": fps}
-        self.cameras, self.image_size, self.render_size, self.camera_name, self._camera_ids = (
-            _views(robot, cameras, image_size, (height, width), camera_name)
-        )
-        self.structure_spec, self.arms = spec, arms
-        self.limit_commands, self.footprints = bool(limit_commands), bool(footprints)
-        # what the observation leaves out (spaces.hidden): a camera policy's, a size's
-        self.brick_poses, self.all_goals = bool(brick_poses), bool(all_goals)
-        self.linger = LINGER.checked(linger)  # s the episode goes on after its success
+        self.variation, self.randomize = spec.variation, spec.randomized
+        self.control_steps = control_steps(spec.fps, self.config.motion.control_dt)
+        self.fps, self.dt = spec.fps, 1.0 / spec.fps
+        self.metadata = {**self.metadata, "render_fps": spec.fps}
+        self.cameras, self.image_size = lay.check_cameras(spec.cameras, robot), spec.image_size
+        self.render_size, self.camera_name = (spec.height, spec.width), spec.camera_name
+        self._camera_ids = lay.camera_names(robot)
+        self.arms = spec.arms
+        self.limit_commands, self.footprints = spec.limit_commands, spec.footprints
+        # what the observation leaves out (Observed.hidden): a camera policy's, a size's
+        self.observed = spec.observed
+        self.linger = spec.linger  # s the episode goes on after its success
         self.seed_of_episode = self.config.seed
-        hands = mode_class(action_mode).hand_poses  # a joint mode's targets jitter, not these
+        hands = mode_class(spec.action_mode).hand_poses  # a joint mode's targets jitter, not these
         closed = expert_loop(self.limit_commands, not hands, self.tolerances)
         self.episodes = EpisodeMaker(  # refuses a structure out of reach, before physics
-            self.config, spec, arms, self.variation, self.randomize, closed
+            self.config, self.structure_spec, spec.arms, self.variation, self.randomize, closed
         )
         self._loop = self._new_loop(self.config.seed)
         self.layout = lay.layout(self._loop.model, self._loop.handles, robot)
         # the state and joint command as lerobot records this robot
         self.lerobot_units = lerobot_units(robot, self.layout.names)
-        self._take_actions(action_mode)
+        self._take_actions(spec.action_mode)
+        bricks = len(self.plan.bricks)
         self.observation_space = observation_space(
-            self.layout, len(self.plan.bricks), self.cameras, self.image_size,
-            self.brick_poses, self.all_goals,
-        )  # fmt: skip
+            self.layout, bricks, self.cameras, self.image_size, self.observed
+        )
         self._state = np.zeros(self.layout.size)
         self._brick_q = lay.brick_index(self._loop.handles)  # the same in every episode
         self._expert = ExpertPolicy(self)
@@ -256,22 +228,6 @@ class BuildEnv(gymnasium.Env):
         return self.episode.ended
 
 
-def _views(
-    robot: RobotDescription,
-    cameras: tuple[str, ...],
-    image_size: tuple[int, int],
-    render_size: tuple[int, int],
-    camera_name: str,
-) -> tuple[tuple[str, ...], tuple[int, int], tuple[int, int], str, dict[str, str]]:
-    """The policy's cameras and their image size, the film's size and camera, and the scene's
-    camera names, checked against the robot's scene."""
-    return (
-        lay.check_cameras(cameras, robot), lay.check_image_size(image_size),
-        lay.check_image_size(render_size), lay.check_cameras((camera_name,), robot)[0],
-        lay.camera_names(robot),
-    )  # fmt: skip
-
-
 def observe(env: BuildEnv) -> dict[str, Any]:
     """What a policy sees now: the entries of the environment's observation space."""
     loop = env.loop
@@ -286,7 +242,7 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "tools": tools,
         "held": loop.custody.holds(loop.data),
     }
-    for key in hidden(env.brick_poses, env.all_goals):
+    for key in env.observed.hidden():
         del observed[key]
     if env.cameras:
         observed["images"] = env.images(env.cameras)

@@ -3,7 +3,7 @@ recordings), how many are filmed, and how many run at once."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 from ...choices import EVAL_FIRST_SEED
@@ -12,7 +12,9 @@ from ...errors import ConfigError
 from ...jobs.backends import check_backend
 from ...options import plain_numbers
 from ...params import EPISODES, MAX_STEPS, WORKERS
-from ..task.layout import check_seed, control_steps
+from ..task.layout import check_seed
+from ..task.ranges import control_steps
+from ..task.spec import SIZES, TaskSpec
 from ..task.variation import DEFAULT_LEVEL, check_level
 
 EVAL_SEED = EVAL_FIRST_SEED  # recordings start at 0 (`record --seed`)
@@ -63,3 +65,43 @@ class EvaluateConfig:
             raise ConfigError(
                 f"video: {self.videos} episodes filmed; accepted 0 to the {self.episodes} run"
             )
+
+
+# A task spec's fields an evaluation holds itself (the rest it hands its environment beside
+# its size and the policy's views, where not the default)
+OWN = ("structure", "robot", "arms", "variation", "fps", "action_mode", "settings", "config")
+OWN_FIELDS = (*OWN, *SIZES)
+
+
+def evaluation_of(
+    policy: str,
+    task: TaskSpec,
+    shown: dict[str, Any],
+    episodes: Any = 10,
+    first_seed: Any = EVAL_SEED,
+    videos: Any = 0,
+    **run: Any,
+) -> EvaluateConfig:
+    """The evaluation of `policy` on `task`'s episodes: `shown` the size and the views
+    evaluation.json lists (a checkpoint's cameras), `run` the evaluation's max_steps,
+    workers, backend and ray_address."""
+    config, _ = task.resolved()
+    defaults = TaskSpec()
+    others = {
+        k: getattr(task, k)
+        for k in (f.name for f in fields(TaskSpec) if f.name not in OWN_FIELDS)
+        if k not in shown and getattr(task, k) != getattr(defaults, k)
+    }
+    options = {**shown, **others, "arms": task.arms, "config": config}
+    return EvaluateConfig(
+        policy,
+        task.structure,
+        options,
+        task.variation,
+        task.fps,
+        episodes,
+        first_seed,
+        videos,
+        action_mode=task.action_mode,
+        **run,
+    )

@@ -4,4 +4,5 @@
 __all__ = [
     "lerobot_env",
     "lerobot_policy",
+    "plugin_task",
 ]

@@ -21,6 +21,7 @@ from ...choices import (
 )
 from ...errors import ConfigError
 from ...robots import DEFAULT_ROBOT, robot
+from ..task.observation_names import OBSERVED
 from .checkpoint_training import Trained, read_training
 
 IMAGES = "observation.images."
@@ -63,14 +64,14 @@ def checkpoint_task(policy: str, given: Task) -> Task:
 
 
 def checkpoint_views(policy: str) -> dict[str, object]:
-    """The environment keywords (`cameras`, `image_size`, and `brick_poses` and `all_goals`
-    where its observation left those out) a checkpoint folder's policy needs, or nothing for a
+    """The environment keywords (`cameras`, `image_size`, and what its observation left out,
+    `OBSERVED`) a checkpoint folder's policy needs, or nothing for a
     policy that is not a checkpoint or sees no camera. ConfigError for images of different
     sizes, which the environment cannot render at once."""
     trained = read_training(Path(policy)) if Path(policy).is_dir() else None
     hidden = {}
     if trained is not None:  # what its observation left out, left out again
-        hidden = {k: False for k in ("brick_poses", "all_goals") if not getattr(trained, k)}
+        hidden = {k: False for k in OBSERVED if not getattr(trained, k)}
     return {**_cameras(Path(policy)), **hidden}
 
 
@@ -122,7 +123,7 @@ def _agreed(given: Task, trained: Trained) -> Task:
     for name in ("robot", "structure", "fps", "action_mode"):
         settled[name] = _same(name, getattr(given, name), getattr(trained, name), trained)
     for name, value in given.size.items():
-        if trained.all_goals:
+        if trained.observed.all_goals:
             _same(name, value, trained.size.get(name), trained)
     return Task(size={**trained.size, **given.size}, **settled)
 

@@ -14,6 +14,7 @@ from typing import Any
 from ...errors import ConfigError
 from ...robots import PRESETS
 from ..task.lerobot_units import robot_type
+from ..task.observation_names import Observed
 
 # pyramid_sim's own metadata in a recording (recording/record.py's DATASET_DOC), and lerobot's
 DATASET_DOC = "meta/pyramid_sim/dataset.json"
@@ -36,6 +37,11 @@ class Trained:
     action_mode: str
     brick_poses: bool = True  # False: it saw the bricks through its cameras alone
     all_goals: bool = True  # False: each arm's next goal alone
+
+    @property
+    def observed(self) -> Observed:
+        """What its policy's observation held beyond the arms' own."""
+        return Observed(self.brick_poses, self.all_goals)
 
 
 def read_training(folder: Path) -> Trained | None:

@@ -19,6 +19,7 @@ from ..recording.episode import task_text
 from ..task.lerobot_units import LerobotUnits
 from ..task.observation_names import environment_names
 from ..task.spaces import environment_state
+from ..task.spec import TaskSpec
 
 __all__ = [
     "LEROBOT_ENV_ID",
@@ -48,7 +49,7 @@ class LerobotView(gymnasium.Wrapper):
         inner = env.observation_space
         assert isinstance(inner, spaces.Dict)
         self.environment_names = environment_names(
-            env.layout.bricks, len(env.plan.bricks), env.brick_poses, env.all_goals
+            env.layout.bricks, len(env.plan.bricks), *env.observed
         )
         observed: dict[str, spaces.Space] = {
             "agent_pos": spaces.Box(-np.inf, np.inf, inner["state"].shape, dtype=np.float32),
@@ -91,10 +92,12 @@ def lerobot_keys(observation: dict[str, Any], units: LerobotUnits) -> dict[str, 
     return mapped
 
 
-def make_lerobot_env(structure: str = "pyramid-even", **options: Any) -> LerobotView:
+def make_lerobot_env(structure: str | TaskSpec = "pyramid-even", **options: Any) -> LerobotView:
     """`gymnasium.make(LEROBOT_ENV_ID, ...)`'s environment: a BuildEnv of `options` as lerobot
     sees it. It renders the overview camera at a film's size (640 x 480, as `evaluate
     --video`) whatever the policy observes: lerobot-eval films every evaluation, and writes
     a film of frames it was not given as a traceback and a missing file. The renderer is made
     at the first frame asked for."""
+    if isinstance(structure, TaskSpec):
+        return LerobotView(BuildEnv(TaskSpec.of(structure, **options)))
     return LerobotView(BuildEnv(structure, **{"render_mode": "rgb_array", **options}))

@@ -28,19 +28,7 @@ PolicyMaker = Callable[[str, Any], Any]
 
 def make_env(config: RecordConfig) -> BuildEnv:
     """The environment a recording's episodes run in, stepping at its frame rate."""
-    return BuildEnv(
-        config.structure,
-        variation=config.variation,
-        fps=config.fps,
-        limit_commands=config.limit_commands,
-        image_size=config.image_size,
-        randomize=config.randomize,
-        action_mode=config.action_mode,
-        linger=config.linger,
-        brick_poses=config.brick_poses,
-        all_goals=config.all_goals,
-        **config.options,
-    )
+    return BuildEnv(config.task)
 
 
 def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
@@ -48,9 +36,7 @@ def features(env: BuildEnv, config: RecordConfig) -> dict[str, fmt.Feature]:
     names = env.lerobot_units.names  # lerobot's, for a robot it records (the SO-101 pair)
     actions = env.action_units.names  # a hand's pose for the waypoint mode
     height, width = config.image_size
-    environment = environment_names(
-        env.layout.bricks, len(env.plan.bricks), config.brick_poses, config.all_goals
-    )
+    environment = environment_names(env.layout.bricks, len(env.plan.bricks), *config.observed)
     found = {
         "observation.state": fmt.Feature("float32", (len(names),), names),
         "observation.environment_state": fmt.Feature("float32", (len(environment),), environment),

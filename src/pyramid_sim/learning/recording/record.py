@@ -27,6 +27,7 @@ from ..dataset import lerobot_format as fmt
 from ..dataset import lerobot_meta as meta
 from ..env.env import BuildEnv
 from ..task.layout import camera_names, check_cameras
+from ..task.observation_names import OBSERVED
 from ..task.variation import check_differ
 from .episode import PRIMITIVES, task_text
 from .filming import FilmAway, PolicyMaker, features, film_staged, learner_for, make_env
@@ -171,8 +172,14 @@ class _Landing:
                 meta.write_episodes_file(out, list(rows.values()), self.task)
         if self.stats is not None:
             meta.write_stats(out, self.stats)
-        meta.write_info(out, len(self.records), self.frames_before.total, config.fps,
-                        self.robot_type, self.features)  # fmt: skip
+        meta.write_info(
+            out,
+            len(self.records),
+            self.frames_before.total,
+            config.fps,
+            self.robot_type,
+            self.features,
+        )
 
     def land(self, result: dict[str, Any]) -> None:
         out, config, episode, end = self.out, self.config, result["episode"], result["end"]
@@ -192,8 +199,11 @@ class _Landing:
             "row": _jsonable(row),
         }
         if config.policy is not None:  # DAgger: what drove it, and how much of it
-            record["driver"] = {"policy": config.policy, "beta": config.beta,
-                                "learner_steps": end.learner_steps}  # fmt: skip
+            record["driver"] = {
+                "policy": config.policy,
+                "beta": config.beta,
+                "learner_steps": end.learner_steps,
+            }
         _write_text(out / RECORDS / f"episode_{episode:06d}.json", json.dumps(record, indent=1))
         if self.added == 0:  # this run's first: the files every episode shares
             meta.write_tasks(out, self.task)
@@ -203,8 +213,14 @@ class _Landing:
         group = self.groups.setdefault(meta.episodes_location(episode), {})
         group[episode] = record["row"]
         meta.write_episodes_file(out, list(group.values()), self.task)
-        meta.write_info(out, len(self.records), self.frames_before.total, config.fps,
-                        self.robot_type, self.features)  # fmt: skip
+        meta.write_info(
+            out,
+            len(self.records),
+            self.frames_before.total,
+            config.fps,
+            self.robot_type,
+            self.features,
+        )
         self.added += 1
 
 
@@ -246,7 +262,7 @@ def _dataset_doc(env: BuildEnv, config: RecordConfig) -> dict[str, Any]:
         "linger": config.linger,
         "cameras": {c: n for c, n in named.items() if c in config.cameras},
     }
-    for hidden in ("brick_poses", "all_goals"):  # said only where the observation leaves out
+    for hidden in OBSERVED:  # said only where the observation leaves it out
         if not getattr(config, hidden):
             doc[hidden] = False
     return doc

@@ -19,11 +19,18 @@ from ...jobs.backends import check_backend
 from ...options import names_argument, plain_numbers
 from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
 from ..action_modes.registry import check_mode_for_robot
-from ..task.layout import check_image_size, control_steps
+from ..task.observation_names import Observed
 from ..task.randomize import check_parts
+from ..task.ranges import check_image_size, control_steps
+from ..task.spec import TaskSpec
 from ..task.variation import DEFAULT_LEVEL, check_level
 
 CAMERA_NAMES = "overview, front, top, left_wrist, right_wrist"
+# The keywords of a recording's run, beside its task spec's: how many at once and where, and
+# a DAgger round's driver
+RUN_KEYWORDS = ("workers", "backend", "ray_address", "noise", "policy", "beta")
+# A task spec's fields a recording hands its environment as given, where not the default
+FILM_FIELDS = ("footprints", "render_mode", "width", "height", "camera_name")
 RANDOMIZED = "all, none, or some of the parts"
 
 
@@ -56,6 +63,28 @@ class RecordConfig:
     # that sees the bricks through its cameras alone
     brick_poses: bool = True
     all_goals: bool = True  # every goal observed (False: each arm's next alone)
+
+    @property
+    def observed(self) -> Observed:
+        """What the observation holds beyond the arms' own."""
+        return Observed(self.brick_poses, self.all_goals)
+
+    @property
+    def task(self) -> TaskSpec:
+        """The task spec its episodes are of: the environment takes it whole."""
+        return TaskSpec.of(
+            self.structure,
+            variation=self.variation,
+            fps=self.fps,
+            limit_commands=self.limit_commands,
+            image_size=self.image_size,
+            randomize=self.randomize,
+            action_mode=self.action_mode,
+            linger=self.linger,
+            brick_poses=self.brick_poses,
+            all_goals=self.all_goals,
+            **self.options,
+        )
 
     def __post_init__(self) -> None:
         for name in ("episodes", "first_seed", "fps", "workers", "noise", "linger", "beta"):
@@ -96,6 +125,42 @@ class RecordConfig:
                 f"seed: {self.first_seed} is out of range; accepted 0 to 2**32 - "
                 f"{self.episodes} (the last of {self.episodes} episodes' seeds below 2**32)"
             )
+
+
+def recording_of(
+    task: TaskSpec, episodes: Any = 1, first_seed: Any = 0, **run: Any
+) -> RecordConfig:
+    """The recording of `task`'s episodes from `first_seed` on, `run` as RUN_KEYWORDS names
+    them (ConfigError naming those for another; `beta` without a `policy` is refused)."""
+    for name in run:
+        if name not in RUN_KEYWORDS:
+            raise ConfigError(f"record: unknown {name!r}; accepted {', '.join(RUN_KEYWORDS)}")
+    if "beta" in run and run.get("policy") is None:
+        raise ConfigError(
+            f"beta: {run['beta']!r} without a policy drives nothing; accepted beta with a "
+            "policy (a DAgger round), or neither"
+        )
+    config, _ = task.resolved()
+    defaults = TaskSpec()
+    film = {k: getattr(task, k) for k in FILM_FIELDS if getattr(task, k) != getattr(defaults, k)}
+    options = {**task.sizes, **film, "arms": task.arms, "config": config}
+    return RecordConfig(
+        task.structure,
+        options,
+        episodes,
+        first_seed,
+        task.fps,
+        task.cameras,
+        task.image_size,
+        task.variation,
+        task.randomize,
+        task.limit_commands,
+        action_mode=task.action_mode,
+        linger=task.linger,
+        brick_poses=task.brick_poses,
+        all_goals=task.all_goals,
+        **run,
+    )
 
 
 @dataclass(frozen=True)

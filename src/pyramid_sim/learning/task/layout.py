@@ -10,15 +10,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from ...choices import CAMERAS, FPS_CHOICES
+from ...choices import CAMERAS
 from ...core.poses import yaw_of
 from ...errors import ConfigError
-from ...params import IMAGE_SIZE_TEXT, image_size_fits
 from ...physics import names as c
 from ...physics.handles import SceneHandles
 from ...robots import RobotDescription
-
-DEFAULT_FPS = 25
+from .ranges import check_camera_names
 
 
 @dataclass(frozen=True)
@@ -104,45 +102,7 @@ def camera_names(robot: RobotDescription) -> dict[str, str]:
 def check_cameras(cameras: tuple[str, ...], robot: RobotDescription) -> tuple[str, ...]:
     """The cameras as a tuple; ConfigError for a camera that is not one of `camera_names`,
     one named twice, or a single name where a sequence of them is asked."""
-    known = camera_names(robot)
-    if isinstance(cameras, str):
-        raise ConfigError(
-            f"cameras: {cameras!r} is one name, not a sequence of them; accepted a tuple of "
-            f"{', '.join(known)}"
-        )
-    cameras = tuple(cameras)
-    for camera in cameras:
-        if camera not in known:
-            raise ConfigError(f"cameras: unknown {camera!r}; accepted {', '.join(known)}")
-    if len(set(cameras)) != len(cameras):
-        raise ConfigError(f"cameras: {', '.join(cameras)} names one twice; accepted each once")
-    return cameras
-
-
-def control_steps(fps: int, control_dt: float) -> int:
-    """The build's control steps in one step at `fps` (a dataset's frame, an environment's
-    step); ConfigError unless `fps` is one of FPS_CHOICES and divides the control rate."""
-    steps = 1.0 / (fps * control_dt) if fps in FPS_CHOICES else 0.0
-    if isinstance(fps, bool) or steps < 1.0 - 1e-9 or abs(steps - round(steps)) > 1e-9:
-        raise ConfigError(
-            f"fps: {fps!r}; accepted {', '.join(map(str, FPS_CHOICES))} (a divisor of the "
-            f"build's {1.0 / control_dt:g} Hz control)"
-        )
-    return int(round(steps))
-
-
-def check_image_size(size: tuple[int, int]) -> tuple[int, int]:
-    """(height, width) as two whole numbers; ConfigError unless both are even and within
-    IMAGE_HEIGHT and IMAGE_WIDTH."""
-    try:
-        height, width = (int(v) for v in size)
-        whole = all(int(v) == v for v in size)
-    except (TypeError, ValueError):
-        height = width = 0
-        whole = False
-    if not (whole and image_size_fits(height, width)):
-        raise ConfigError(f"image size: {size!r}; accepted (height, width), {IMAGE_SIZE_TEXT}")
-    return height, width
+    return check_camera_names(cameras, tuple(camera_names(robot)))
 
 
 def check_seed(seed: int) -> None:

@@ -3,11 +3,34 @@ environment, a recording and lerobot's plugin. Pure: no MuJoCo."""
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 from ...choices import ARMS
 
 BRICK_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")  # a brick's position (m), quaternion
 GOAL_FIELDS = ("x", "y", "z", "yaw")  # a target's position (m) and yaw (rad), world frame
 TOOL_FIELDS = ("x", "y", "z", "yaw")  # a hand's tool centre (m) and yaw (rad), world frame
+
+
+class Observed(NamedTuple):
+    """What the observation holds beyond the arms' own, carried whole from a task spec to
+    the spaces and the names: the bricks' poses (and the goals' fill, judged from them), and
+    every goal (else each arm's next alone). A recording's files and a checkpoint's training
+    name each the field's way (`OBSERVED`)."""
+
+    brick_poses: bool = True
+    all_goals: bool = True
+
+    def hidden(self) -> tuple[str, ...]:
+        """The observation's entries left out: the bricks' poses and the goals' fill (judged
+        from them), and every goal but the arms' next ones."""
+        keys = [] if self.brick_poses else ["bricks", "placed"]
+        if not self.all_goals:
+            keys += ["goals"] if "placed" in keys else ["goals", "placed"]
+        return tuple(keys)
+
+
+OBSERVED = Observed._fields  # the names of what can be left out of an observation
 
 
 def environment_names(

@@ -13,7 +13,7 @@ from ...choices import ARMS
 from ...errors import ActionError
 from . import layout as lay
 from .anchors import next_targets
-from .observation_names import BRICK_FIELDS, GOAL_FIELDS, TOOL_FIELDS
+from .observation_names import BRICK_FIELDS, GOAL_FIELDS, TOOL_FIELDS, Observed
 
 
 def observation_space(
@@ -21,8 +21,7 @@ def observation_space(
     targets: int,
     cameras: tuple[str, ...],
     image_size: tuple[int, int],
-    brick_poses: bool = True,
-    all_goals: bool = True,
+    observed: Observed = Observed(),
 ) -> spaces.Dict:
     """The state, the bricks (every magazine brick's pose), the pick location (where a brick
     rests when fed to the spawn spot), the goals (every target's pose,
@@ -30,11 +29,9 @@ def observation_space(
     order), each arm's next target (left first: which of the goals it works towards,
     anchors.next_targets), the tools (each hand's tool pose, left first: where the hands are,
     without a learner having to learn the arm's kinematics), whether each hand holds a brick
-    (physics/hold_sense.py), and each camera's image. Without `brick_poses` (a policy that
-    sees the bricks through its cameras alone), neither the bricks' poses nor which goals hold
-    a brick, which is judged from them. Without `all_goals`, neither every goal nor their
-    fill: each arm's next target alone, so the space is the same for every structure's size."""
-    observed: dict[str, spaces.Space] = {
+    (physics/hold_sense.py), and each camera's image; less what `observed` leaves out
+    (`Observed.hidden`: a camera policy's, a size-agnostic one's)."""
+    entries: dict[str, spaces.Space] = {
         "state": spaces.Box(-np.inf, np.inf, (layout.size,), dtype=np.float64),
         "bricks": spaces.Box(-np.inf, np.inf, (layout.bricks, len(BRICK_FIELDS)), dtype=np.float64),
         "pick": spaces.Box(-np.inf, np.inf, (len(GOAL_FIELDS),), dtype=np.float64),
@@ -44,23 +41,14 @@ def observation_space(
         "tools": spaces.Box(-np.inf, np.inf, (len(ARMS), len(TOOL_FIELDS)), dtype=np.float64),
         "held": spaces.Box(0.0, 1.0, (len(ARMS),), dtype=np.float64),
     }
-    for key in hidden(brick_poses, all_goals):
-        del observed[key]
+    for key in observed.hidden():
+        del entries[key]
     if cameras:
         height, width = image_size
-        observed["images"] = spaces.Dict(
+        entries["images"] = spaces.Dict(
             {c: spaces.Box(0, 255, (height, width, 3), dtype=np.uint8) for c in cameras}
         )
-    return spaces.Dict(observed)
-
-
-def hidden(brick_poses: bool, all_goals: bool) -> tuple[str, ...]:
-    """The observation's entries a variant leaves out: the bricks' poses and the goals' fill
-    (judged from them), and every goal but the arms' next ones."""
-    keys = [] if brick_poses else ["bricks", "placed"]
-    if not all_goals:
-        keys += ["goals"] if "placed" in keys else ["goals", "placed"]
-    return tuple(keys)
+    return spaces.Dict(entries)
 
 
 def environment_state(observation: dict[str, Any]) -> np.ndarray:
