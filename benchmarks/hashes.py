@@ -138,7 +138,8 @@ def build_hash(layers: int) -> tuple[str, str]:
 def modes() -> list[tuple[str, int, tuple[str, ...]]]:
     """Every registered mode, its frame rate and the robots it is offered for (the registry's
     `UNBUILT_MODES` refuses some up front)."""
-    from pyramid_sim.learning.action_modes.registry import MODES, UNBUILT_MODES
+    from pyramid_sim.learning.action_modes.registry import MODES
+    from pyramid_sim.learning.action_modes.unbuilt import UNBUILT_MODES
 
     return [
         (

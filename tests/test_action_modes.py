@@ -9,7 +9,12 @@ from pyramid_sim.choices import ACTION_MODES
 
 ROOT = Path(__file__).resolve().parents[1]
 # the registry, and the names' own table (choices.py: the CLI's choices and their words)
-ALLOWED = ("src/pyramid_sim/learning/action_modes/registry.py", "src/pyramid_sim/choices.py")
+# the registries: the classes by name, the modes in words, and the robots each is refused for
+ALLOWED = (
+    "src/pyramid_sim/learning/action_modes/registry.py",
+    "src/pyramid_sim/learning/action_modes/unbuilt.py",
+    "src/pyramid_sim/choices.py",
+)
 CHECKED = ("src", "benchmarks", "plugins", "scripts")
 
 

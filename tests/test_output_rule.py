@@ -87,6 +87,7 @@ def test_the_library_refuses_a_datasets_folder_too(tmp_path):
             call(out=tmp_path / "data")
 
 
+@pytest.mark.physics  # sweep checks its grid's reach by IK first, which loads MuJoCo
 def test_sweep_leaves_a_users_sweep_csv_untouched(tmp_path, refused):
     mine = _mine(tmp_path / "s/sweep.csv")
     err = refused(["sweep", "--layers", "1", "--friction", "0.5,1", "--out", str(tmp_path / "s")])
@@ -94,6 +95,7 @@ def test_sweep_leaves_a_users_sweep_csv_untouched(tmp_path, refused):
     assert mine.read_bytes() == MINE
 
 
+@pytest.mark.physics  # the recording's folder is checked where it is written, with MuJoCo
 def test_record_leaves_a_users_file_untouched(tmp_path, refused):
     mine = _mine(tmp_path / "d/notes.txt")
     err = refused(["record", "--layers", "1", "--out", str(tmp_path / "d")])

@@ -61,6 +61,7 @@ def test_an_unknown_keyword_names_every_one_accepted():
     assert set(SETTINGS) <= named and "robot" in named
 
 
+@pytest.mark.physics  # gym.make imports the environment's module, which loads MuJoCo
 def test_gym_make_refuses_through_the_spec_before_any_physics():
     import gymnasium
 

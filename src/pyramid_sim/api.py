@@ -204,10 +204,11 @@ def record(
         TaskSpec.of(task, **options)  # ConfigError: a whole spec takes no keyword beside it
     for hook, what in ((on_frame, "on_frame"), (on_episode, "on_episode")):
         callback_argument(hook, what)
-    from .learning.recording.record import record as run_recording
     from .learning.recording.record_config import recording_of
 
-    wanted = recording_of(task, episodes, seed, **run)
+    wanted = recording_of(task, episodes, seed, **run)  # checked before MuJoCo loads
+    from .learning.recording.record import record as run_recording
+
     _prepare_gl(render=bool(wanted.cameras))
     from .learning.evaluation.policies import make_policy
 

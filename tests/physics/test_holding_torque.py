@@ -8,7 +8,7 @@ import pytest
 
 import pyramid_sim
 from pyramid_sim.choices import ACTION_MODES
-from pyramid_sim.learning.action_modes.registry import UNBUILT_MODES
+from pyramid_sim.learning.action_modes.unbuilt import UNBUILT_MODES
 from pyramid_sim.learning.env.env import BuildEnv
 from pyramid_sim.learning.env.expert import ExpertPolicy
 from pyramid_sim.learning.task import variation as var

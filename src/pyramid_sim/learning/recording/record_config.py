@@ -18,7 +18,7 @@ from ...errors import ConfigError
 from ...jobs.backends import check_backend
 from ...options import names_argument, plain_numbers
 from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
-from ..action_modes.registry import check_mode_for_robot
+from ..action_modes.unbuilt import check_mode_for_robot
 from ..task.observation_names import Observed
 from ..task.randomize import check_parts
 from ..task.ranges import check_image_size, control_steps
