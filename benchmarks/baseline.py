@@ -61,6 +61,7 @@ from pyramid_sim.cli.args import (  # noqa: E402
 )
 from pyramid_sim.cli.endings import ended  # noqa: E402
 from pyramid_sim.errors import ConfigError, PyramidSimError  # noqa: E402
+from pyramid_sim.output.files import write_atomic  # noqa: E402
 from pyramid_sim.params import LINGER  # noqa: E402
 from pyramid_sim.robots import PRESETS  # noqa: E402
 
@@ -252,6 +253,12 @@ def lerobot_eval_line(checkpoint: Path, out: Path, recipe: Recipe) -> str:
     ])  # fmt: skip
 
 
+def _write(path: Path, text: str) -> None:
+    """`text` at `path` whole, through a temporary file and a rename: a row's files are never
+    left half written by a stop."""
+    write_atomic(path, lambda tmp: tmp.write_text(text))
+
+
 def training(out: Path, round_: int) -> Path:
     """Round `round_`'s lerobot output folder (round 0 is the first training)."""
     return out / ("train" if round_ == 0 else f"train_r{round_}")
@@ -321,7 +328,7 @@ def curve(out: Path, recipe: Recipe) -> None:
         scores = score(folder / "pretrained_model", recipe, recipe.curve_episodes, None)
         points.append({"step": int(folder.name), "success_rate": scores["success_rate"],
                        "interval": scores["success_rate_95"]})  # fmt: skip
-    (out / "curve.json").write_text(json.dumps(points, indent=1) + "\n")
+    _write(out / "curve.json", json.dumps(points, indent=1) + "\n")
     figure, axes = plt.subplots(figsize=(5, 3.2))
     steps = [p["step"] for p in points]
     axes.plot(steps, [100 * p["success_rate"] for p in points], "o-")
@@ -497,7 +504,7 @@ def _run(out: Path, recipe: Recipe, results: Path | None) -> int:
         if cpu:
             seconds["train_cpu"] = sum(float(p.read_text()) for p in cpu)
         last = checkpoint(out, len(recipe.rounds))
-        (out / "lerobot_eval.txt").write_text(lerobot_eval_line(last, out, recipe) + "\n")
+        _write(out / "lerobot_eval.txt", lerobot_eval_line(last, out, recipe) + "\n")
         start = time.perf_counter()
         scored = evaluated(out, recipe)
         scores = score(last, recipe, recipe.episodes, scored, recipe.eval_layers)
@@ -510,13 +517,13 @@ def _run(out: Path, recipe: Recipe, results: Path | None) -> int:
         return EXIT_USAGE if "accepted" in str(error) else 1
     document = json.loads((scored / "evaluation.json").read_text())
     document["baseline"] = {"recipe": asdict(recipe), "seconds": seconds}
-    (scored / "evaluation.json").write_text(json.dumps(document, indent=1) + "\n")
+    _write(scored / "evaluation.json", json.dumps(document, indent=1) + "\n")
     row = json.dumps(result(recipe, document, seconds, out / "demos", rounds, gain), indent=1)
     row += "\n"
-    (out / "result.json").write_text(row)
+    _write(out / "result.json", row)
     if results is not None:
         results.mkdir(parents=True, exist_ok=True)
-        (results / f"{recipe.row}.json").write_text(row)
+        _write(results / f"{recipe.row}.json", row)
     films_beside(last, recipe, scored, (results or out) / "films", row)  # films.py
     print(
         f"baseline {recipe.row}: {scores['successes']}/{scores['episodes']} built "
