@@ -125,7 +125,7 @@ ROWS: dict[str, Recipe] = {
         # DE NIRO's own 20-brick pyramid, by a policy trained on it: the task's goals and the
         # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
         # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
-        # 60 demonstrations (about 45 built, 2800 frames each) and 6000 steps, sized to
+        # 60 demonstrations (56 built, about 2800 frames each) and 6000 steps, sized to
         # record, train and score in one session on two cores beside three other rows
         replace(
             SIX,
