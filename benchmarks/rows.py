@@ -126,8 +126,8 @@ ROWS: dict[str, Recipe] = {
         # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
         # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
         # 60 demonstrations (56 built, about 2800 frames each, 157k frames). 6000 steps of 32
-        # (1.2 passes over the frames) placed 4.60 of 20; 20000 steps are 4 passes, about an
-        # hour of one core, sized to train and score in one session beside another row
+        # (1.2 passes over the frames) placed 4.60 of 20; 15000 steps are 3 passes, about 50
+        # minutes of one core, sized to train and score in one session beside two other rows
         replace(
             SIX,
             row="panda-20",
@@ -136,7 +136,7 @@ ROWS: dict[str, Recipe] = {
             all_goals=False,
             demos=60,
             noise=0.002,
-            steps=20000,
+            steps=15000,
             save_every=5000,
             episodes=20,
         ),
@@ -150,8 +150,8 @@ ROWS: dict[str, Recipe] = {
         # the continuous track in absolute targets: each hand's pose in the world, bounded as
         # a delta is; a chunk of places does not carry its first error into its last. At 4000
         # steps (1.7 passes over its 77k frames) its places were 1.5 cm off on the expert's own
-        # states and it scored 0/100; 20000 steps are 8 passes
-        Recipe(row="panda-2-absolute", action_mode="absolute", steps=20000, save_every=5000),
+        # states and it scored 0/100; 15000 steps are 6 passes
+        Recipe(row="panda-2-absolute", action_mode="absolute", steps=15000, save_every=5000),
         # the bricks seen through the overview camera alone (96 x 96), their poses unobserved:
         # a step costs about five times the state policy's, so half the steps
         Recipe(
