@@ -20,6 +20,7 @@ from typing import Any
 from pyramid_sim.cli.args import Parser
 from pyramid_sim.cli.endings import ended
 from pyramid_sim.errors import ConfigError
+from pyramid_sim.learning.evaluation.scores import failure_kind
 from pyramid_sim.output.files import write_atomic
 
 REPO = Path(__file__).resolve().parents[1]
@@ -29,7 +30,6 @@ START, END = "<!-- leaderboard: start -->", "<!-- leaderboard: end -->"
 DAGGER_START, DAGGER_END = "<!-- dagger: start -->", "<!-- dagger: end -->"
 COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
            "training", "success (95 % interval)", "films (3D replay)", "commit", "reproduce")  # fmt: skip
-FILMS_LINK = "../benchmarks/results/films"  # the films' folder, from docs/benchmark.md
 TRACK_ORDER = {"keypose": 0, "continuous": 1}
 
 
@@ -108,10 +108,11 @@ def _success(row: dict[str, Any]) -> str:
     )
 
 
-def films(row: dict[str, Any], folder: Path | None = None) -> dict[str, dict[str, str]]:
-    """The row's films (kind -> its film's and replay page's names) that benchmarks/films.py
-    made of the row's own run (its manifest's row and finish time are the row's) and that
-    exist, in results/films/ (or `folder`)."""
+def films(row: dict[str, Any], folder: Path | None = None) -> dict[str, dict[str, Any]]:
+    """The row's filmed episodes (kind -> the manifest's entry: the episode, its film's and
+    replay page's names) that benchmarks/films.py chose from the row's own run (its manifest's
+    row and finish time are the row's), from results/films/ (or `folder`). The manifest is
+    committed; the films and pages it names are made beside it and never committed."""
     folder = folder or RESULTS / "films"
     manifest = folder / f"{row['row']}.json"
     if not manifest.is_file():
@@ -119,20 +120,17 @@ def films(row: dict[str, Any], folder: Path | None = None) -> dict[str, dict[str
     document = json.loads(manifest.read_text())
     if document.get("row") != row["row"] or document.get("finished") != row.get("finished"):
         return {}
-    return {
-        kind: made
-        for kind, made in document.get("films", {}).items()
-        if (folder / made["film"]).is_file() and (folder / made["page"]).is_file()
-    }
+    return dict(document.get("films", {}))
 
 
 def _films(row: dict[str, Any], folder: Path | None) -> str:
-    found = films(row, folder)
-    links = [
-        f"[{kind}]({FILMS_LINK}/{made['film']}) ([3D]({FILMS_LINK}/{made['page']}))"
-        for kind, made in found.items()
-    ]
-    return ", ".join(links) or "-"
+    """The filmed episodes by seed (the same on every machine, films made or not)."""
+    cells = []
+    for kind, made in films(row, folder).items():
+        episode = made["episode"]
+        why = f", {failure_kind(episode['failure']) or 'other'}" if episode["failure"] else ""
+        cells.append(f"{kind}: seed {episode['seed']}{why}")
+    return ", ".join(cells) or "-"
 
 
 def table(rows: list[dict[str, Any]], films_folder: Path | None = None) -> str:

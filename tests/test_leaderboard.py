@@ -89,65 +89,65 @@ def test_a_page_out_of_step_with_the_results_fails_the_check(tmp_path, monkeypat
     assert "**55/100**" in page.read_text()
 
 
-LINK = re.compile(r"\[(success|failure|3D)\]\(\.\./benchmarks/results/films/([^)]+)\)")
+CELL = re.compile(r"(success|failure): seed (\d+)")
 
 
-def linked_films_problems(page: str, results: Path) -> list[str]:
-    """What is wrong with the films the leaderboard links: a linked file that is missing, or
-    not of its line's row (its manifest names another row, or another run of it)."""
+def named_films_problems(page: str, results: Path) -> list[str]:
+    """What is wrong with the filmed episodes the leaderboard names: one its row's manifest
+    does not list, or a manifest of another row or another run of it."""
     problems = []
     table_text = page.split(leaderboard.START)[1].split(leaderboard.END)[0]
     for line in table_text.splitlines():
-        names = [m.group(2) for m in LINK.finditer(line)]
-        if not names:
+        named = [(m.group(1), int(m.group(2))) for m in CELL.finditer(line)]
+        if not named:
             continue
         row = json.loads((results / f"{line.split('--row ')[1].split()[0]}.json").read_text())
         manifest = results / "films" / f"{row['row']}.json"
         listed = json.loads(manifest.read_text()) if manifest.is_file() else {}
-        own = {m[k] for m in listed.get("films", {}).values() for k in ("film", "page")}
-        for name in names:
-            if not (results / "films" / name).is_file():
-                problems.append(f"{name}: missing")
-            if name not in own or listed.get("row") != row["row"]:
-                problems.append(f"{name}: not {row['row']}'s")
+        for kind, seed in named:
+            made = listed.get("films", {}).get(kind, {})
+            if made.get("episode", {}).get("seed") != seed or listed.get("row") != row["row"]:
+                problems.append(f"{row['row']} {kind} {seed}: not in its manifest")
             if listed.get("finished") != row.get("finished"):
-                problems.append(f"{name}: of another run of {row['row']}")
+                problems.append(f"{row['row']} {kind} {seed}: of another run")
     return problems
 
 
-def test_each_linked_film_exists_and_is_of_its_row():
-    assert linked_films_problems(leaderboard.PAGE.read_text(), leaderboard.RESULTS) == []
+def test_each_named_film_is_of_its_rows_own_run():
+    assert named_films_problems(leaderboard.PAGE.read_text(), leaderboard.RESULTS) == []
 
 
-def _films(results, row, finished, kinds, missing=()):
+def _episode(seed, kind):
+    failure = None if kind == "success" else "a joint's torque limit: x"
+    return {"seed": seed, "success": failure is None, "bricks_placed": 1, "failure": failure}
+
+
+def _films(results, row, finished, kinds):
     (results / "films").mkdir(exist_ok=True)
-    made = {k: {"film": f"{row}-{k}.mp4", "page": f"{row}-{k}.html"} for k in kinds}
-    for names in made.values():
-        for name in names.values():
-            if name not in missing:
-                (results / "films" / name).write_text("x")
+    made = {
+        k: {"episode": _episode(100000 + i, k), "film": f"{row}-{k}.mp4", "page": f"{row}-{k}.html"}
+        for i, k in enumerate(kinds)
+    }
     document = {"row": row, "finished": finished, "films": made}
     (results / "films" / f"{row}.json").write_text(json.dumps(document))
 
 
-def test_films_are_linked_where_they_exist_and_are_of_the_rows_own_run(tmp_path):
+def test_films_are_named_from_the_rows_own_run_whether_made_here_or_not(tmp_path):
     for name, finished in (("a", "t1"), ("b", "t2"), ("c", "t3")):
         (tmp_path / f"{name}.json").write_text(
             json.dumps({**_row(name, "keypose", 50), "finished": finished})
         )
-    _films(tmp_path, "a", "t1", ["success", "failure"], missing=["a-failure.html"])
+    _films(tmp_path, "a", "t1", ["success", "failure"])
     _films(tmp_path, "b", "an earlier run", ["success"])
     table_text = leaderboard.table(leaderboard.load(tmp_path), tmp_path / "films")
     page = f"{leaderboard.START}\n{table_text}\n{leaderboard.END}"
     a, b, c = (line for line in table_text.splitlines()[2:])
-    assert "[success](../benchmarks/results/films/a-success.mp4)" in a
-    assert "([3D](../benchmarks/results/films/a-success.html))" in a and "failure" not in a
-    assert "films/" not in b and "films/" not in c  # another run's; none
-    assert linked_films_problems(page, tmp_path) == []
-    (tmp_path / "films" / "a-success.mp4").unlink()  # a linked file gone: the test says so
+    assert "success: seed 100000, failure: seed 100001, torque" in a
+    assert "seed" not in b and "seed" not in c  # another run's manifest; none
+    assert "films/" not in table_text  # the films are never committed: nothing links them
+    assert named_films_problems(page, tmp_path) == []
     (tmp_path / "films" / "a.json").write_text(json.dumps({"row": "b", "finished": "t1"}))
-    assert linked_films_problems(page, tmp_path) == [
-        "a-success.mp4: missing",
-        "a-success.mp4: not a's",
-        "a-success.html: not a's",
+    assert named_films_problems(page, tmp_path) == [
+        "a success 100000: not in its manifest",
+        "a failure 100001: not in its manifest",
     ]
