@@ -11,7 +11,14 @@ import pyarrow.parquet as pq
 import pytest
 
 import pyramid_sim
-from pyramid_sim.learning.recording.dagger import JOINT_REACH, REACH, TURN, Mixer, bounded
+from pyramid_sim.learning.recording.dagger import (
+    JOINT_REACH,
+    REACH,
+    TURN,
+    Mixer,
+    bounded,
+    taken_over,
+)
 
 TASK = dict(layers=1, fps=10, cameras=(), action_mode="anchored", linger=0.0)
 
@@ -85,6 +92,59 @@ def test_a_learners_hand_is_pulled_back_within_the_bound_its_fingers_the_experts
                                  "waypoints": lambda self, a: None})()  # fmt: skip
     pulled = bounded(joints, np.array([1.0, 0.5]), np.array([0.0, 0.0]))
     np.testing.assert_allclose(pulled, [JOINT_REACH, 0.0])
+
+
+class _Waypoints:  # a mode whose actions are the waypoints themselves
+    moved_unit, moved = "m", np.array([True, True, True, False, False] * 2)
+
+    def waypoints(self, action):
+        return np.array(action, dtype=np.float64), lambda world: world
+
+
+class _Joints:  # a mode of no waypoints: one joint moved, one entry not
+    moved_unit, moved = "rad", np.array([True, False])
+
+    def waypoints(self, action):
+        return None
+
+
+def test_a_learner_within_the_gate_keeps_its_drift_and_past_it_the_expert_takes_over():
+    expert = np.array([0.5, 0.2, 0.3, 0.0, 0.08] * 2)
+    drift = np.array([0.012, -0.01, 0.0, 0.4, -0.08, 0.0, 0.0, -0.015, -0.2, 0.0])
+    kept = taken_over(_Waypoints(), expert + drift, expert, threshold=0.02)
+    # its own place and turn, 1.6 cm off: kept whole (`bounded` would cut it to 5 mm)
+    own = drift * ([1, 1, 1, 1, 0] * 2)  # the learner's own but for the fingers
+    np.testing.assert_allclose(kept - expert, own, atol=1e-7)
+    assert taken_over(_Waypoints(), expert + drift, expert, threshold=0.015) is None
+    assert taken_over(_Waypoints(), expert + drift, expert, threshold=0.01, scale=2.0) is not None
+    joints = _Joints()
+    gate = 0.02 * JOINT_REACH / REACH  # rad, as the joint modes' bound is scaled
+    kept = taken_over(joints, np.array([0.9 * gate, 0.5]), np.zeros(2), threshold=0.02)
+    np.testing.assert_allclose(kept, [0.9 * gate, 0.0], atol=1e-7)  # its joint; the rest, expert's
+    assert taken_over(joints, np.array([1.1 * gate, 0.0]), np.zeros(2), threshold=0.02) is None
+
+
+def test_past_the_gate_the_expert_drives_the_rest_of_the_span():
+    class Drifting:  # asks for a place further off the expert's each step
+        steps = 0
+
+        def reset(self):
+            pass
+
+        def act(self, observation):
+            Drifting.steps += 1
+            return np.full(10, 0.004 * Drifting.steps, np.float32)
+
+    def gate(learner, expert):
+        return taken_over(_Waypoints(), learner, expert, threshold=0.02)
+
+    mixer = Mixer(Drifting(), fps=10, seed=0, beta=0.0, bound=gate)  # the learner's every span
+    expert = np.zeros(10, np.float32)
+    span = [mixer({}, expert) for _ in range(20)]
+    # 4, 8 mm ... off: each hand 4 mm x sqrt(3) a step, past 2 cm at the third of the span
+    assert [bool(a.any()) for a in span] == [True, True] + [False] * 18
+    assert mixer.learner_steps == 2 and mixer.takeovers == 1
+    assert Drifting.steps == 3  # asked once more, then not again until the next span
 
 
 def test_the_mixer_hands_whole_spans_to_the_learner_at_its_share():

@@ -29,7 +29,8 @@ SPAN = 2.0  # s a driver keeps the arms: a learned chunk of 20 actions at 10 fra
 REACH = 0.005  # m a hand's pose may stray from the expert's (DART's 5 mm), at DE NIRO's scale
 TURN = 0.05  # rad its yaw may
 JOINT_REACH = 0.005  # rad a joint's target may, in the joint modes
-Bound = Callable[[np.ndarray, np.ndarray], np.ndarray]
+# a learner's action as executed, given the expert's; None: the expert takes over
+Bound = Callable[[np.ndarray, np.ndarray], np.ndarray | None]
 
 
 def bounded(mode: Any, learner: np.ndarray, expert: np.ndarray, scale: float = 1.0) -> np.ndarray:
@@ -56,6 +57,35 @@ def bounded(mode: Any, learner: np.ndarray, expert: np.ndarray, scale: float = 1
     return np.asarray(form(out), dtype=np.float32)
 
 
+def taken_over(
+    mode: Any, learner: np.ndarray, expert: np.ndarray, threshold: float, scale: float = 1.0
+) -> np.ndarray | None:
+    """HG-DAgger's gate (Kelly et al. 2019): the learner's own action, its fingers the
+    expert's, while every hand's position is within `threshold` (times the robot's `scale`)
+    of the expert's waypoint; None past it, where the expert takes over. Unlike `bounded`,
+    the learner's drift is kept up to the threshold, so the data hold the states it drifts
+    into. In a mode of no waypoints, each entry that moves an arm within `threshold` scaled
+    as `JOINT_REACH` is to `REACH`."""
+    ways = mode.waypoints(expert)
+    if ways is None:
+        reach = threshold * scale if mode.moved_unit == "m" else threshold * JOINT_REACH / REACH
+        moved = mode.moved
+        own = np.asarray(learner, dtype=np.float64)
+        if np.abs(own[moved] - np.asarray(expert)[moved]).max(initial=0.0) > reach:
+            return None
+        out = np.array(expert, dtype=np.float64)
+        out[moved] = own[moved]
+        return out.astype(np.float32)
+    expert_world, form = ways
+    learner_world = np.array(mode.waypoints(learner)[0], dtype=np.float64)
+    for k in range(len(learner_world) // 5):
+        xyz = slice(5 * k, 5 * k + 3)
+        if np.linalg.norm(learner_world[xyz] - expert_world[xyz]) > threshold * scale:
+            return None
+        learner_world[5 * k + 4] = expert_world[5 * k + 4]  # the expert's fingers
+    return np.asarray(form(learner_world), dtype=np.float32)
+
+
 class Mixer:
     """Which action is executed at each step of one episode: the expert's, or in the spans
     the learner drives, the learner's for the same observation."""
@@ -67,6 +97,7 @@ class Mixer:
         self.steps = 0
         self.learner = False
         self.learner_steps = 0  # steps the learner drove
+        self.takeovers = 0  # spans the expert took back past a gate (`taken_over`)
 
     def __call__(self, observation: dict[str, Any], expert: np.ndarray) -> np.ndarray:
         """The action executed now, given the observation and the expert's label for it."""
@@ -77,9 +108,14 @@ class Mixer:
         self.steps += 1
         if not self.learner:
             return expert
-        self.learner_steps += 1
         learner = np.asarray(_call(self.policy.act, "act()", observation), dtype=np.float32)
-        return self.bound(learner, expert)
+        executed = self.bound(learner, expert)
+        if executed is None:  # past the gate: the expert takes the rest of the span
+            self.learner = False
+            self.takeovers += 1
+            return expert
+        self.learner_steps += 1
+        return executed
 
 
 def _call(method: Any, what: str, *args: Any) -> Any:
