@@ -83,8 +83,11 @@ def render(src: Path = SRC) -> str:
             if package == "" or p != init
         ]
         if not items:  # rooms only: name them, each described under its own heading
-            rooms = [f"`{p}/`" for p in grouped if p.startswith(f"{package}/") and p.count("/")
-                     == package.count("/") + 1]  # fmt: skip
+            rooms = [
+                f"`{p}/`"
+                for p in grouped
+                if p.startswith(f"{package}/") and p.count("/") == package.count("/") + 1
+            ]
             items = [_fill(f"- its rooms: {', '.join(rooms)}", "  ")]
         blocks.append(_fill(heading) + "\n\n" + "\n".join(items))
     return "\n\n".join(blocks) + "\n"
