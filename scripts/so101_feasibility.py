@@ -11,7 +11,7 @@ saturates for a moment: a limit of this script, not of the arm.
 
     python3 scripts/so101_feasibility.py [--kp 50] [--precompensate] [--grip-force 10]
 
-Results: docs/so101_groundwork.md.
+Results: docs/notes/2026-11-25-so101-groundwork.md.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from pyramid_sim.resources import ASSETS
 
 XML = ASSETS / "robots" / "so101" / "so101.xml"
 ARM = ("shoulder_pan", "shoulder_lift", "elbow_flex", "wrist_flex", "wrist_roll")
-STALL_TORQUE = 2.94  # N m, STS3215 at 12 V (docs/so101_groundwork.md)
+STALL_TORQUE = 2.94  # N m, STS3215 at 12 V (docs/notes/2026-11-25-so101-groundwork.md)
 BRICK = (0.045, 0.020, 0.0145)  # m: DE NIRO's proportions at the jaw's scale
 BRICK_MASS = 0.015  # kg
 JAW_LEVER = 0.0728  # m of tip gap a radian of the jaw joint, near parallel (measured)

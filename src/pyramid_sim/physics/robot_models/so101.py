@@ -1,7 +1,8 @@
 """The SO-101 pair's model: the vendored so101.xml (assets/robots/so101/), once per arm,
 attached as `left/` and `right/` at the preset's bases on the table top.
 
-What is changed from the vendored model, and why (docs/so101_groundwork.md measured it):
+What is changed from the vendored model, and why (measured in
+docs/notes/2026-11-25-so101-groundwork.md):
 - the jaws' mesh hulls do not collide: a hull fills the gap between the jaws, so no brick
   would fit; two thin pads on the tips' inner faces do (common.py's pad contact), and the
   model's own inert pads go;
