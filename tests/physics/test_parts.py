@@ -16,13 +16,13 @@ from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.physics.custody import BrickCustody
 from pyramid_sim.physics.dispatch import ArmDispatch
 from pyramid_sim.physics.handles import SceneHandles
+from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.physics.parts import make_parts, schedule_zones, start_at_clear_poses
 from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.readout import measurements
 from pyramid_sim.physics.scene import build_scene, park_position
 from pyramid_sim.physics.spawner import Spawner
-from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.stops import stall_reason, stop_reason
 from pyramid_sim.physics.zone_watch import ZoneWatch
 
