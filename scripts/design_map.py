@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""The map of the code in docs/design.md, made from the modules' own docstrings.
+"""The map of the code, docs/code_map.md, made from the modules' own docstrings.
 
     python3 scripts/design_map.py [--check]
 
 One entry a module under src/pyramid_sim: its path and the first sentence of its docstring,
-whole, grouped by sub-package, each group headed by its `__init__.py`'s first sentence. The map goes between the marker comments in docs/design.md;
+whole, grouped by sub-package, each group headed by its `__init__.py`'s first sentence. The
+map goes between the marker comments in docs/code_map.md (docs/design.md links it);
 `--check` changes nothing and exits 1 if the map there is not the one the code makes (as
 tests/test_design_map.py does). Read with `ast` only: nothing of pyramid_sim is imported.
 """
@@ -20,7 +21,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "pyramid_sim"
-DESIGN = ROOT / "docs" / "design.md"
+MAP_PAGE = ROOT / "docs" / "code_map.md"
 START = "<!-- map:start: made by scripts/design_map.py from the docstrings; edit those -->"
 END = "<!-- map:end -->"
 WIDTH = 100
@@ -83,8 +84,11 @@ def render(src: Path = SRC) -> str:
             if package == "" or p != init
         ]
         if not items:  # rooms only: name them, each described under its own heading
-            rooms = [f"`{p}/`" for p in grouped if p.startswith(f"{package}/") and p.count("/")
-                     == package.count("/") + 1]  # fmt: skip
+            rooms = [
+                f"`{p}/`"
+                for p in grouped
+                if p.startswith(f"{package}/") and p.count("/") == package.count("/") + 1
+            ]
             items = [_fill(f"- its rooms: {', '.join(rooms)}", "  ")]
         blocks.append(_fill(heading) + "\n\n" + "\n".join(items))
     return "\n\n".join(blocks) + "\n"
@@ -110,16 +114,16 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     for path in undocumented():
         print(f"design_map: src/pyramid_sim/{path} has no docstring", file=sys.stderr)
-    text = DESIGN.read_text(encoding="utf-8")
+    text = MAP_PAGE.read_text(encoding="utf-8")
     fresh = updated(text)
     if args.check:
         if fresh != text:
-            print("design_map: the map in docs/design.md is stale; run it", file=sys.stderr)
+            print("design_map: the map in docs/code_map.md is stale; run it", file=sys.stderr)
             return 1
         return 0
     if fresh != text:
-        DESIGN.write_text(fresh, encoding="utf-8")
-        print("design_map: docs/design.md's map made afresh", file=sys.stderr)
+        MAP_PAGE.write_text(fresh, encoding="utf-8")
+        print("design_map: docs/code_map.md made afresh", file=sys.stderr)
     return 0
 
 

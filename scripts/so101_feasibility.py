@@ -11,7 +11,7 @@ saturates for a moment: a limit of this script, not of the arm.
 
     python3 scripts/so101_feasibility.py [--kp 50] [--precompensate] [--grip-force 10]
 
-Results: docs/so101_groundwork.md.
+Results: docs/notes/2026-11-25-so101-groundwork.md.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from pyramid_sim.resources import ASSETS
 
 XML = ASSETS / "robots" / "so101" / "so101.xml"
 ARM = ("shoulder_pan", "shoulder_lift", "elbow_flex", "wrist_flex", "wrist_roll")
-STALL_TORQUE = 2.94  # N m, STS3215 at 12 V (docs/so101_groundwork.md)
+STALL_TORQUE = 2.94  # N m, STS3215 at 12 V (docs/notes/2026-11-25-so101-groundwork.md)
 BRICK = (0.045, 0.020, 0.0145)  # m: DE NIRO's proportions at the jaw's scale
 BRICK_MASS = 0.015  # kg
 JAW_LEVER = 0.0728  # m of tip gap a radian of the jaw joint, near parallel (measured)
@@ -74,12 +74,20 @@ def build(kp: float, grip_force: float) -> mujoco.MjModel:
     act.forcelimited = True
     act.ctrlrange = [0.0, JAW_LEVER * 1.745]
     act.ctrllimited = True
-    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.4, 0.4, 0.01],
-                            pos=[0.2, 0, -0.01], friction=[1, 0.005, 0.0001])  # fmt: skip
+    spec.worldbody.add_geom(
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=[0.4, 0.4, 0.01],
+        pos=[0.2, 0, -0.01],
+        friction=[1, 0.005, 0.0001],
+    )
     brick = spec.worldbody.add_body(name="brick", pos=[*START, BRICK[2] / 2])
     brick.add_freejoint()
-    brick.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[s / 2 for s in BRICK], mass=BRICK_MASS,
-                   friction=[1, 0.005, 0.0001])  # fmt: skip
+    brick.add_geom(
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=[s / 2 for s in BRICK],
+        mass=BRICK_MASS,
+        friction=[1, 0.005, 0.0001],
+    )
     return spec.compile()
 
 
@@ -90,13 +98,22 @@ def _add_pads(spec: mujoco.MjSpec, gripper: mujoco.MjsBody, jaw: mujoco.MjsBody)
     mujoco.mj_kinematics(model, data)
     g, j = model.body("gripper").id, model.body("moving_jaw_so101_v1").id
     rot_g, rot_j = data.xmat[g].reshape(3, 3), data.xmat[j].reshape(3, 3)
-    gripper.add_geom(name="fixed_pad", type=mujoco.mjtGeom.mjGEOM_BOX, size=PAD_HALF,
-                     pos=[FIXED_FACE_X - PAD_HALF[0], -0.0002, PAD_Z])  # fmt: skip
+    gripper.add_geom(
+        name="fixed_pad",
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=PAD_HALF,
+        pos=[FIXED_FACE_X - PAD_HALF[0], -0.0002, PAD_Z],
+    )
     world = data.xpos[g] + rot_g @ np.array([MOVING_FACE_X + PAD_HALF[0], -0.0002, PAD_Z])
     quat = np.zeros(4)
     mujoco.mju_mat2Quat(quat, (rot_j.T @ rot_g).flatten())
-    jaw.add_geom(name="moving_pad", type=mujoco.mjtGeom.mjGEOM_BOX, size=PAD_HALF,
-                 pos=rot_j.T @ (world - data.xpos[j]), quat=quat)  # fmt: skip
+    jaw.add_geom(
+        name="moving_pad",
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=PAD_HALF,
+        pos=rot_j.T @ (world - data.xpos[j]),
+        quat=quat,
+    )
     for name in ("fixed_pad", "moving_pad"):
         pad = spec.geom(name)
         pad.friction = [1.0, 0.02, 0.0002]
@@ -139,14 +156,21 @@ class Run:
         mujoco.mj_forward(self.model, probe)
         return q + probe.qfrc_bias[self.arm_v] / self.kp
 
-    def move(self, xy: tuple[float, float] | np.ndarray, z: float, yaw: float, gap: float,
-             seconds: float, speed: float = 0.08) -> None:  # fmt: skip
+    def move(
+        self,
+        xy: tuple[float, float] | np.ndarray,
+        z: float,
+        yaw: float,
+        gap: float,
+        seconds: float,
+        speed: float = 0.08,
+    ) -> None:
         """A smooth straight move of the tool point to (xy, z) at `yaw`, the jaw at `gap`."""
         start = self.data.site_xpos[self.tcp].copy()
         end = np.array([*xy, z])
         duration = max(float(np.linalg.norm(end - start)) / speed, 0.2)
-        rotation = np.array([[math.cos(yaw), -math.sin(yaw), 0],
-                             [math.sin(yaw), math.cos(yaw), 0], [0, 0, 1]]) @ DOWN  # fmt: skip
+        cos, sin = math.cos(yaw), math.sin(yaw)
+        rotation = np.array([[cos, -sin, 0], [sin, cos, 0], [0, 0, 1]]) @ DOWN
         for k in range(int(seconds / DT)):
             t = min(1.0, (k + 1) * DT / duration)
             t = t * t * (3 - 2 * t)
@@ -154,8 +178,9 @@ class Run:
                 mink.SO3.from_matrix(rotation), start + t * (end - start)
             )
             self.task.set_target(pose)
-            velocity = mink.solve_ik(self.config, [self.task, self.posture], DT, "daqp",
-                                     damping=1e-3, limits=self.limits)  # fmt: skip
+            velocity = mink.solve_ik(
+                self.config, [self.task, self.posture], DT, "daqp", damping=1e-3, limits=self.limits
+            )
             self.config.integrate_inplace(velocity, DT)
             self.data.ctrl[self.acts] = self.command(self.config.q[self.arm_q])
             self.data.ctrl[self.grip] = gap

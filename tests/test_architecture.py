@@ -7,11 +7,14 @@ import pkgutil
 import re
 import subprocess
 import sys
+import tokenize
 from pathlib import Path
 
 import pyramid_sim
 
 SRC = Path(pyramid_sim.__file__).resolve().parent
+ROOT = Path(__file__).resolve().parents[1]
+FORMATTED = ("src", "plugins", "scripts")  # trees `ruff format` is taken from as it is
 PURE = (
     "pyramid_sim",
     "pyramid_sim.core",
@@ -91,6 +94,36 @@ def test_no_class_over_200_lines_and_no_function_over_60():
             if limit and node.end_lineno - node.lineno + 1 > limit:
                 long.append(f"{path.name}: {node.name}")
     assert long == []
+
+
+def _escapes(path: Path) -> list[str]:
+    """The lines of `path` that dodge the formatter or a limit: a `# fmt: skip` (or `off`)
+    comment, or statements joined by `;`."""
+    found = []
+    with path.open("rb") as source:
+        for token in tokenize.tokenize(source.readline):
+            dodge = token.type == tokenize.COMMENT and re.search(r"fmt:\s*(skip|off)", token.string)
+            joined = token.type == tokenize.OP and token.string == ";"
+            if dodge or joined:
+                found.append(f"{path.name}:{token.start[0]}: {token.line.strip()[:60]}")
+    return found
+
+
+def test_no_line_dodges_the_formatter_or_a_limit():
+    """src/, plugins/ and scripts/ are as `ruff format` writes them: no `# fmt: skip`, no
+    joined statements; a limit is met by the code's shape."""
+    found = [e for tree in FORMATTED for p in (ROOT / tree).rglob("*.py") for e in _escapes(p)]
+    assert found == []
+
+
+def test_the_escape_check_finds_each_escape(tmp_path):
+    """The test above can fail: a `# fmt: skip`, a `# fmt: off` and a joined line are found,
+    and neither a `;` in a string nor `fmt: skip` in a docstring is."""
+    path = tmp_path / "m.py"
+    path.write_text(
+        'x = [1,\n     2]  # fmt: skip\n# fmt: off\na = 1; b = 2\ns = "a; b"\n"""fmt: skip"""\n'
+    )
+    assert [e.split(":")[1] for e in _escapes(path)] == ["2", "3", "4"]
 
 
 def test_the_public_api_is_the_objects_its_modules_define_and_the_installed_version():

@@ -1,4 +1,4 @@
-"""docs/design.md's map of the code is the one scripts/design_map.py makes from the modules'
+"""docs/code_map.md, the map of the code, is the one scripts/design_map.py makes from the modules'
 docstrings: a module added, moved or redescribed without the map made afresh fails here.
 Read with `ast` only; nothing of pyramid_sim is imported."""
 
@@ -19,9 +19,15 @@ def _design_map():
 dm = _design_map()
 
 
-def test_the_map_in_design_md_is_the_one_the_modules_make():
+def test_the_map_in_code_map_md_is_the_one_the_modules_make():
     """Stale? Run `python3 scripts/design_map.py`."""
-    assert dm.current(dm.DESIGN.read_text(encoding="utf-8")) == dm.render()
+    assert dm.current(dm.MAP_PAGE.read_text(encoding="utf-8")) == dm.render()
+
+
+def test_design_md_links_the_map_and_holds_none_of_it():
+    """design.md is where to find a room; the generated map is a page of its own."""
+    design = (ROOT / "docs" / "design.md").read_text(encoding="utf-8")
+    assert "(code_map.md)" in design and dm.START not in design
 
 
 def test_every_module_has_a_docstring_for_the_map():

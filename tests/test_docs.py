@@ -52,3 +52,29 @@ def test_the_performance_page_stays_short_and_present():
     lines = (ROOT / "docs" / "performance.md").read_text().splitlines()
     assert len(lines) < 200, len(lines)
     assert (ROOT / "CHANGELOG.md").exists()
+
+
+# Reference pages say what is true now; a dated line or study goes to docs/notes/, a note a date.
+REFERENCE = ("performance.md", "robots.md", "measurements.md", "design.md", "code_map.md")
+DATE = re.compile(r"\b20\d\d-\d\d-\d\d\b")
+NOTE_LINK = re.compile(r"notes/20\d\d-\d\d-\d\d[\w.-]*")
+
+
+def _dated(text: str) -> list[str]:
+    """The lines of `text` that carry a date, a link to a dated note aside."""
+    return [line for line in text.splitlines() if DATE.search(NOTE_LINK.sub("", line))]
+
+
+@pytest.mark.parametrize("name", REFERENCE)
+def test_a_reference_page_carries_no_dated_line(name):
+    assert _dated((ROOT / "docs" / name).read_text()) == []
+
+
+def test_every_note_is_named_by_its_date():
+    notes = sorted(p.name for p in (ROOT / "docs" / "notes").glob("*.md"))
+    assert notes and [n for n in notes if not re.match(r"20\d\d-\d\d-\d\d-", n)] == []
+
+
+def test_the_date_check_finds_a_dated_line_and_passes_a_link():
+    text = "Measured on 2026-11-25.\nSee [the study](notes/2026-11-25-study.md#x).\nNo date."
+    assert _dated(text) == ["Measured on 2026-11-25."]

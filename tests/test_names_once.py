@@ -51,3 +51,26 @@ def test_a_structures_reach_rule_is_declared_with_it():
     assert STRUCTURES["pyramid"].resized(StructureSpec("pyramid"), 2) == {"layers": 2}
     assert STRUCTURES["wall"].held_fixed(wall) == "3 courses"
     assert STRUCTURES["towers"].held_fixed(StructureSpec("towers")) == "layers=3"
+
+
+def _files_naming(word: str, root: Path = SRC) -> list[str]:
+    """The .py files under `root` whose source spells `word`."""
+    return sorted(
+        p.relative_to(root).as_posix() for p in root.rglob("*.py") if word in p.read_text()
+    )
+
+
+def test_an_option_is_named_in_at_most_three_files():
+    """A task option is declared in the spec and carried whole, not relayed by name through
+    every layer: `all_goals` is spelt in the spec, what is observed (`Observed`) and a
+    recording's settings, and nowhere else."""
+    assert len(_files_naming("all_goals")) <= 3, _files_naming("all_goals")
+
+
+def test_the_count_sees_a_relayed_name(tmp_path):
+    """The count above can fail: each file spelling the name is counted, once."""
+    for k in range(4):
+        (tmp_path / f"layer{k}").mkdir()
+        (tmp_path / f"layer{k}" / "m.py").write_text(f"x = spec.all_goals and all_goals{k}\n")
+    (tmp_path / "other.py").write_text("goals = 1\n")
+    assert len(_files_naming("all_goals", tmp_path)) == 4

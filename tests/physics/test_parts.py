@@ -16,13 +16,14 @@ from pyramid_sim.physics.clearance import arm_geoms
 from pyramid_sim.physics.custody import BrickCustody
 from pyramid_sim.physics.dispatch import ArmDispatch
 from pyramid_sim.physics.handles import SceneHandles
+from pyramid_sim.physics.hooks import BuildHooks
 from pyramid_sim.physics.ik import DualArmIK
 from pyramid_sim.physics.parts import make_parts, schedule_zones, start_at_clear_poses
 from pyramid_sim.physics.reach import prepare
 from pyramid_sim.physics.readout import measurements
 from pyramid_sim.physics.scene import build_scene, park_position
 from pyramid_sim.physics.spawner import Spawner
-from pyramid_sim.physics.stops import stall_reason
+from pyramid_sim.physics.stops import stall_reason, stop_reason
 from pyramid_sim.physics.zone_watch import ZoneWatch
 
 CONFIG = SimConfig()
@@ -139,6 +140,34 @@ def test_a_stall_reason_alone_names_what_the_arms_wait_for():
         "stalled at t = 61.0 s: no arm finished a move for 60 s; "
         "left arm waiting for the shared zone"
     )
+
+
+def test_the_stop_reasons_alone_say_why_a_build_stops_and_nothing_before():
+    parts = make_parts(PLAN, CONFIG)
+    args = (parts.dispatch, parts.custody, parts.spawner, CONFIG)
+    assert stop_reason(*args, now=10.0, last_progress=0.0) is None
+    assert stop_reason(*args, now=61.0, last_progress=0.0).startswith("stalled at t = 61.0 s")
+    late = CONFIG.max_sim_time + 1
+    assert stop_reason(*args, now=late, last_progress=late) == (
+        f"build did not finish within {CONFIG.max_sim_time:g} s of simulated time"
+    )
+
+
+def test_the_actuation_alone_ramps_the_iks_joints_and_the_gaps_over_the_substeps():
+    parts = make_parts(PLAN, CONFIG)
+    act, ctrl, index = parts.actuation, parts.data.ctrl, parts.handles.ctrl_index
+    joints = len(parts.ik.qadr["left"])
+    command = act.command([0.01, 0.02]).copy()
+    assert command[[joints, 2 * joints + 1]].tolist() == [0.01, 0.02]
+    assert np.array_equal(
+        np.delete(command, [joints, 2 * joints + 1]),
+        parts.ik.q[np.concatenate([parts.ik.qadr[a] for a in c.ARMS])],
+    )  # the Panda's servos hold against gravity: no sag to aim past
+    before, seen = ctrl[index].copy(), []
+    hooks = BuildHooks(on_step=lambda d: seen.append(d.ctrl[index].copy()))
+    assert act.step(command, hooks) == (False, CONFIG.substeps)
+    assert len(seen) == CONFIG.substeps and np.allclose(seen[-1], command)
+    assert np.allclose(seen[0], before + (command - before) / CONFIG.substeps)
 
 
 def test_the_readout_alone_reports_the_state_it_is_given():

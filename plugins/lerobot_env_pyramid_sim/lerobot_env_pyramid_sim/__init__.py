@@ -72,9 +72,7 @@ class PyramidSimEnv(EnvConfig):
                 type=FeatureType.ENV,
                 shape=(
                     len(
-                        pyramid_sim.environment_names(
-                            bricks + SPARE_BRICKS, bricks, self.brick_poses, self.all_goals
-                        )
+                        pyramid_sim.environment_names(bricks + SPARE_BRICKS, bricks, *spec.observed)
                     ),
                 ),
             ),

@@ -141,8 +141,10 @@ class _Worker:
                 continue
             if kind == "interrupted":  # a job's Ctrl-C stops the run, as in one process
                 raise KeyboardInterrupt
-            return self._finish(payload if kind == "done" else None,
-                                None if kind == "done" else f"crashed: {payload}")  # fmt: skip
+            return self._finish(
+                payload if kind == "done" else None,
+                None if kind == "done" else f"crashed: {payload}",
+            )
         if not self.proc.is_alive():
             self.proc.join()
             code = self.proc.exitcode

@@ -20,6 +20,7 @@ from ..config import SimConfig, VideoConfig, check_count
 from ..core.structures import StructureSpec
 from ..jobs.build import run_build
 from ..output.judge import judge
+from ..physics import loop as build_loop
 from ..physics.hooks import BuildHooks
 from ..physics.loop import BuildLoop
 from ..physics.reach import prepare
@@ -159,7 +160,7 @@ def _control_calls(loop: BuildLoop) -> dict[str, list[tuple[Any, str]]]:
             (loop.monitor, "record"),
             (loop.custody, "check_knocks"),
             (loop.clearance, "update"),
-            (loop, "_stop_reason"),
+            (build_loop, "stop_reason"),  # the stop checks, as the loop calls them
         ],
         "physics": [(mujoco, "mj_step")],
     }

@@ -21,8 +21,7 @@ from .hooks import BuildHooks
 from .ik_rate import IKRate
 from .parts import BuildParts, make_parts
 from .readout import measurements
-from .sag import SagOffset
-from .stops import no_motion_reason, stall_reason, warning_reason
+from .stops import no_motion_reason, stop_reason, warning_reason
 
 
 class BuildLoop:
@@ -35,26 +34,16 @@ class BuildLoop:
         self.model, self.data, self.handles = p.model, p.data, p.handles
         self.ik, self.spawner, self.custody, self.dispatch = p.ik, p.spawner, p.custody, p.dispatch
         self.zones, self.clearance, self.monitor = p.zones, p.clearance, p.monitor
+        self.actuation = p.actuation  # the command, and the physics steps towards it
         self.hooks = BuildHooks()
-        config, h = self.config, self.handles
-        self._ramp = np.arange(1, config.substeps + 1)[:, None] / config.substeps
-        # The command in `handles.ctrl_index` order: each arm's joints, then its gripper.
-        self._ik_q = np.concatenate([self.ik.qadr[a] for a in c.ARMS])
-        joints = len(self.ik.qadr["left"])
-        self._command = np.zeros(len(h.ctrl_index))
-        self._command_gap = np.array([joints, 2 * joints + 1])
-        self._command_q = np.setdiff1d(np.arange(len(h.ctrl_index)), self._command_gap)
         self.placed = self.steps = 0
-        robot, ik = config.robot_description, self.ik
-        self._sag = None if robot.gravity_compensation else SagOffset(ik.model, robot)
-        self.closure = closure
-        self.ik_rate = IKRate(ik, self.dispatch, config, closure.aim if closure else None)
+        self.closure, ik = closure, self.ik
+        self.ik_rate = IKRate(ik, self.dispatch, self.config, closure.aim if closure else None)
         # how far each arm is from its move's end: the IK's error, or the closure's measure
         self.arrival = {a: closure.arrival(a) if closure else ik.error_of(a) for a in c.ARMS}
         for runner in self.dispatch.runners.values():  # a closed loop's releases: at once
             runner.let_go_at_once = bool(closure and closure.let_go_at_once)
         self.last_progress = 0.0  # sim time an arm last finished a step
-        self._next_frame = 0.0
 
     @classmethod
     def of(cls, plan: Plan, config: SimConfig, model: mujoco.MjModel | None = None) -> BuildLoop:
@@ -111,29 +100,10 @@ class BuildLoop:
             self.hooks.on_ik(time.perf_counter() - start)
 
     def _step_physics(self, command: np.ndarray) -> bool:
-        """The joint and gripper targets, ramped across the physics steps (stepped targets
-        jolt the held brick); True if MuJoCo raised a warning."""
-        m, d, hooks, ctrl = self.model, self.data, self.hooks, self.data.ctrl
-        change = np.zeros_like(ctrl)
-        change[self.handles.ctrl_index] = command - ctrl[self.handles.ctrl_index]
-        ramp = ctrl + change * self._ramp
-        warned = False
-        for k in range(len(ramp)):
-            ctrl[:] = ramp[k]
-            mujoco.mj_step(m, d)
-            warned = self.monitor.record()
-            if warned:
-                break
-            if hooks.on_step is not None:
-                hooks.on_step(d)
-            if (
-                hooks.on_frame is not None
-                and hooks.frame_dt is not None
-                and d.time >= self._next_frame - 1e-9
-            ):
-                hooks.on_frame(m, d)
-                self._next_frame += hooks.frame_dt
-        self.steps += k + 1
+        """A control step's physics towards `command` (`Actuation.step`); True if MuJoCo
+        raised a warning."""
+        warned, steps = self.actuation.step(command, self.hooks)
+        self.steps += steps
         return warned
 
     def _keep_custody(self) -> None:
@@ -143,16 +113,6 @@ class BuildLoop:
             self.dispatch.dropped(drop.arm, drop.brick)
         self.custody.check_knocks()
         self.clearance.update()
-
-    def _stop_reason(self) -> str | None:
-        cfg, now = self.config, self.data.time
-        if self.custody.failure is not None:
-            return self.custody.failure
-        if now > cfg.max_sim_time:
-            return f"build did not finish within {cfg.max_sim_time:g} s of simulated time"
-        if now - self.last_progress > cfg.stall_time:
-            return stall_reason(self.dispatch, self.custody, self.spawner, cfg, now)
-        return None
 
     # --- the build, a control step at a time ----------------------------------------------------
     def expert_command(self) -> np.ndarray | None:
@@ -183,12 +143,7 @@ class BuildLoop:
     def command(self) -> np.ndarray:
         """The IK's joint solution and the hands' gaps as a command, `handles.ctrl_index`
         order (a view, rewritten each control step)."""
-        command = self._command
-        command[self._command_q] = self.ik.q[self._ik_q]
-        if self._sag is not None:  # servos that sag: aim past the target by the sag
-            command[self._command_q] += self._sag(self.ik.q[self._ik_q])
-        command[self._command_gap] = [self.dispatch.runners[a].gap for a in c.ARMS]
-        return command
+        return self.actuation.command([self.dispatch.runners[a].gap for a in c.ARMS])
 
     def apply(self, command: np.ndarray) -> str | None:
         """One control step of physics towards `command` (ramped across its substeps), then
@@ -197,7 +152,8 @@ class BuildLoop:
         if self._step_physics(command):
             return warning_reason(self.data)
         self._keep_custody()
-        reason = self._stop_reason()
+        now, progress = self.data.time, self.last_progress
+        reason = stop_reason(self.dispatch, self.custody, self.spawner, self.config, now, progress)
         self.feed_spot()
         return reason
 

@@ -19,6 +19,7 @@ from ..core.poses import Pose
 from ..core.primitives import clear_pose
 from ..core.zone import Zone, overlap_zones, shared_zone
 from . import names as c
+from .actuation import Actuation
 from .clearance import ArmClearance
 from .custody import BrickCustody
 from .dispatch import ArmDispatch
@@ -50,6 +51,7 @@ class BuildParts:
     zones: ZoneWatch
     clearance: ArmClearance
     monitor: StepMonitor
+    actuation: Actuation
 
 
 def schedule_zones(schedule: Schedule, plan: Plan, config: SimConfig) -> dict[str, Zone]:
@@ -128,6 +130,9 @@ def make_parts(plan: Plan, config: SimConfig, model: mujoco.MjModel | None = Non
     zones = schedule_zones(config.schedule, plan, config)
     tcp: dict[str, Pose] = {a: ik.tcp_pose(a) for a in c.ARMS}
     dispatch = ArmDispatch(plan, config, spawner, tcp, zones, data)
+    watch = ZoneWatch(zones, data, handles)
+    clearance = ArmClearance(model, data, config.robot_description)
+    monitor = step_monitor(model, data, handles, config)
     return BuildParts(
         plan=plan,
         config=config,
@@ -138,7 +143,8 @@ def make_parts(plan: Plan, config: SimConfig, model: mujoco.MjModel | None = Non
         spawner=spawner,
         custody=custody,
         dispatch=dispatch,
-        zones=ZoneWatch(zones, data, handles),
-        clearance=ArmClearance(model, data, config.robot_description),
-        monitor=step_monitor(model, data, handles, config),
+        zones=watch,
+        clearance=clearance,
+        monitor=monitor,
+        actuation=Actuation(model, data, handles, ik, config, monitor),
     )

@@ -54,3 +54,22 @@ def stall_reason(
     return (
         f"stalled at t = {now:.1f} s: no arm finished a move for {config.stall_time:g} s; {cause}"
     )
+
+
+def stop_reason(
+    dispatch: ArmDispatch,
+    custody: BrickCustody,
+    spawner: Spawner,
+    config: SimConfig,
+    now: float,
+    last_progress: float,
+) -> str | None:
+    """Why a build stops at `now`, if it does: its bricks' custody failed, it ran out of
+    simulated time, or no arm has finished a step since `last_progress` for `stall_time`."""
+    if custody.failure is not None:
+        return custody.failure
+    if now > config.max_sim_time:
+        return f"build did not finish within {config.max_sim_time:g} s of simulated time"
+    if now - last_progress > config.stall_time:
+        return stall_reason(dispatch, custody, spawner, config, now)
+    return None

@@ -1,7 +1,7 @@
 """A pair of SO-101s (The Robot Studio's 5-joint arm with a jaw, lerobot's reference robot),
 side by side on the table as people set up a bimanual pair, building at their own scale.
 Every SO-101 name, limit and dimension lives here and in physics/robot_models/so101.py;
-docs/so101_groundwork.md has the measurements behind them."""
+docs/notes/2026-11-25-so101-groundwork.md has the measurements behind them."""
 
 from __future__ import annotations
 

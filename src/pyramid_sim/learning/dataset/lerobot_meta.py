@@ -32,6 +32,8 @@ EPISODES_PER_FILE = 100  # rows of meta/episodes a file holds
 EPISODES_FILE = "meta/episodes/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
 DATA_FILES_SIZE_IN_MB = 100  # lerobot's defaults: what its writer fills a file up to
 VIDEO_FILES_SIZE_IN_MB = 200
+# meta/tasks.parquet's columns as pandas' metadata names them: name, pandas' type, numpy's
+TASK_COLUMNS = (("task_index", "int64", "int64"), ("task", "unicode", "object"))
 
 
 def merge_stats(
@@ -51,8 +53,10 @@ def merge_stats(
         n_a, n_b = float(a["count"].reshape(-1)[0]), float(b["count"].reshape(-1)[0])
         n = n_a + n_b
         mean = (n_a * a["mean"] + n_b * b["mean"]) / n
-        var = (n_a * (a["std"] ** 2 + (a["mean"] - mean) ** 2)
-               + n_b * (b["std"] ** 2 + (b["mean"] - mean) ** 2)) / n  # fmt: skip
+        var = (
+            n_a * (a["std"] ** 2 + (a["mean"] - mean) ** 2)
+            + n_b * (b["std"] ** 2 + (b["mean"] - mean) ** 2)
+        ) / n
         doc = {
             "min": np.minimum(a["min"], b["min"]),
             "max": np.maximum(a["max"], b["max"]),
@@ -127,15 +131,21 @@ def write_tasks(root: Path, task: str) -> None:
     pandas_meta = {
         "index_columns": ["task"],
         "column_indexes": [],
-        "columns": [
-            {"name": "task_index", "field_name": "task_index", "pandas_type": "int64",
-             "numpy_type": "int64", "metadata": None},
-            {"name": "task", "field_name": "task", "pandas_type": "unicode",
-             "numpy_type": "object", "metadata": None},
-        ],
-    }  # fmt: skip
+        "columns": [_column(*c) for c in TASK_COLUMNS],
+    }
     table = table.replace_schema_metadata({b"pandas": json.dumps(pandas_meta).encode()})
     write_atomic(root / "meta/tasks.parquet", lambda tmp: pq.write_table(table, tmp), ".part")
+
+
+def _column(name: str, pandas_type: str, numpy_type: str) -> dict[str, Any]:
+    """A column as pandas' schema metadata describes it."""
+    return {
+        "name": name,
+        "field_name": name,
+        "pandas_type": pandas_type,
+        "numpy_type": numpy_type,
+        "metadata": None,
+    }
 
 
 def write_episodes_file(root: Path, rows: list[dict[str, Any]], task: str) -> None:

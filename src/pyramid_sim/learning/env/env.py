@@ -21,6 +21,7 @@ warnings, the expert giving a brick up); truncated at the build's time limit.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
 import gymnasium
@@ -40,11 +41,12 @@ from ..task.footprints import draw_goals
 from ..task.lerobot_units import lerobot_units
 from ..task.outcome import PlacementWatch, episode_info
 from ..task.ranges import DEFAULT_FPS, control_steps
-from ..task.spaces import checked_action, goals, next_of, observation_space, pick, renderer
+from ..task.spaces import checked_action, goals, next_of, observation_space, pick
 from ..task.spec import TaskSpec
 from .action_check import not_bool
 from .control_steps import ControlSteps
 from .episode_state import EpisodeState
+from .views import Views
 
 
 class BuildEnv(gymnasium.Env):
@@ -55,8 +57,7 @@ class BuildEnv(gymnasium.Env):
     _reset_needed = True  # Gymnasium's contract: reset before the first step
     footprints = True  # the targets drawn on the table for the cameras
     tolerances = Tolerances()  # what a placement is judged by
-    _renderer: Any = None
-    _eyes: Any = None  # the cameras' renderer, made at the first observation
+    _views: Views | None = None  # the film and the cameras (views.py)
 
     def __init__(self, structure: str | TaskSpec = "pyramid-even", **keywords: Any) -> None:
         """The environment of a task spec (`TaskSpec`), given whole or as its keywords:
@@ -70,8 +71,9 @@ class BuildEnv(gymnasium.Env):
         self.fps, self.dt = spec.fps, 1.0 / spec.fps
         self.metadata = {**self.metadata, "render_fps": spec.fps}
         self.cameras, self.image_size = lay.check_cameras(spec.cameras, robot), spec.image_size
-        self.render_size, self.camera_name = (spec.height, spec.width), spec.camera_name
-        self._camera_ids = lay.camera_names(robot)
+        size, film = (spec.height, spec.width), spec.camera_name
+        draw = partial(draw_goals, self)  # the goals' footprints on each picture
+        self._views = Views(lay.camera_names(robot), self.image_size, size, film, draw)
         self.arms = spec.arms
         self.limit_commands, self.footprints = spec.limit_commands, spec.footprints
         # what the observation leaves out (Observed.hidden): a camera policy's, a size's
@@ -170,21 +172,14 @@ class BuildEnv(gymnasium.Env):
 
     def render(self) -> np.ndarray | None:
         """`camera_name`'s view at `width` x `height`, an RGB array (render_mode "rgb_array")."""
-        if self.render_mode != "rgb_array":
+        if self.render_mode != "rgb_array" or self._views is None:
             return None
-        if self._renderer is None:
-            height, width = self.render_size
-            self._renderer = renderer(self._loop.model, width, height)
-        self._renderer.update_scene(self._loop.data, self._camera_ids[self.camera_name])
-        draw_goals(self, self._renderer.scene)
-        return self._renderer.render()
+        return self._views.film(self._loop)
 
     def close(self) -> None:
         """Close the renderers (the next picture makes new ones)."""
-        for name in ("_renderer", "_eyes"):
-            if (renderer := getattr(self, name, None)) is not None:
-                renderer.close()
-                setattr(self, name, None)
+        if self._views is not None:
+            self._views.close()
 
     # --- what a step reads and writes --------------------------------------------------------
     def held_command(self) -> np.ndarray:
@@ -203,14 +198,8 @@ class BuildEnv(gymnasium.Env):
     def images(self, cameras: tuple[str, ...]) -> dict[str, np.ndarray]:
         """What the named cameras see now (names as `layout.camera_names` gives them), at
         `image_size`: the observation's images, or a recorder's at the frames it keeps."""
-        if self._eyes is None:
-            self._eyes = renderer(self._loop.model, self.image_size[1], self.image_size[0])
-        images = {}
-        for camera in cameras:
-            self._eyes.update_scene(self._loop.data, self._camera_ids[camera])
-            draw_goals(self, self._eyes.scene)
-            images[camera] = self._eyes.render()
-        return images
+        assert self._views is not None  # made before the first episode
+        return self._views.images(self._loop, cameras)
 
     @property
     def loop(self) -> BuildLoop:

@@ -1,5 +1,5 @@
-"""The scripted builder as a policy, kept importable where the docs of 2026-11-28 and before
-imported it from: it lives with its closed loop in learning/expert/policy.py."""
+"""The scripted builder as a policy, kept importable where earlier docs imported it from: it
+lives with its closed loop in learning/expert/policy.py."""
 
 from ..expert.policy import ExpertPolicy
 

@@ -71,7 +71,7 @@ def checkpoint_views(policy: str) -> dict[str, object]:
     trained = read_training(Path(policy)) if Path(policy).is_dir() else None
     hidden = {}
     if trained is not None:  # what its observation left out, left out again
-        hidden = {k: False for k in OBSERVED if not getattr(trained, k)}
+        hidden = {k: False for k in OBSERVED if not getattr(trained.observed, k)}
     return {**_cameras(Path(policy)), **hidden}
 
 
@@ -123,7 +123,7 @@ def _agreed(given: Task, trained: Trained) -> Task:
     for name in ("robot", "structure", "fps", "action_mode"):
         settled[name] = _same(name, getattr(given, name), getattr(trained, name), trained)
     for name, value in given.size.items():
-        if trained.observed.all_goals:
+        if not trained.observed.size_free:
             _same(name, value, trained.size.get(name), trained)
     return Task(size={**trained.size, **given.size}, **settled)
 

@@ -35,13 +35,7 @@ class Trained:
     variation: str
     fps: int
     action_mode: str
-    brick_poses: bool = True  # False: it saw the bricks through its cameras alone
-    all_goals: bool = True  # False: each arm's next goal alone
-
-    @property
-    def observed(self) -> Observed:
-        """What its policy's observation held beyond the arms' own."""
-        return Observed(self.brick_poses, self.all_goals)
+    observed: Observed = Observed()  # what its policy's observation held beyond the arms' own
 
 
 def read_training(folder: Path) -> Trained | None:
@@ -113,8 +107,7 @@ def _from_dataset(root: Path) -> Trained:
             doc["variation"],
             int(info["fps"]),
             doc.get("action_mode", OLD_ACTION_MODE),
-            bool(doc.get("brick_poses", True)),
-            bool(doc.get("all_goals", True)),
+            Observed.read(doc),
         )
     except (KeyError, TypeError, ValueError, AttributeError) as err:
         raise ConfigError(
@@ -133,8 +126,7 @@ def _from_env(env: dict[str, Any], path: Path) -> Trained:
             env["variation"],
             int(env["fps"]),
             env["action_mode"],
-            bool(env.get("brick_poses", True)),
-            bool(env.get("all_goals", True)),
+            Observed.read(env),
         )
     except (KeyError, TypeError, ValueError) as err:
         raise ConfigError(

@@ -108,8 +108,7 @@ def expert_episode(
     """Roll the expert out from `reset(seed=seed)` to the end of the episode, a frame each
     environment step (the environment steps at the dataset's rate), at most `step_limit`
     frames, as an evaluation's (and the environment's `linger` after a success); the last is
-    done. With
-    `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
+    done. With `noise`, what is executed is off the expert's action by `JointNoise`, and the frame's
     action is still the expert's: what to do from where the arm really is. With a `mixer`
     (DAgger), a learner drives some spans and the expert labels what it reaches (a learner's
     bad action raises PolicyError). Waypoint labels are led past a move's end
@@ -127,26 +126,20 @@ def expert_episode(
         environment = environment_state(obs)
         images = env.images(cameras) if cameras else {}
         hands = obs["tools"][:, :3].copy()
-        done_now = executed(action)
-        if mixer is not None:
-            done_now = mixer(obs, done_now)
-        try:
-            obs, reward, terminated, truncated, info = env.step(done_now)
-        except ActionError as err:  # only a learner's action can be outside the space
-            raise PolicyError(f"policy: act() gave an {err}") from err
+        obs, reward, terminated, truncated, info = _step(env, obs, executed(action), mixer)
         truncated = truncated or frames + 1 >= limit
         done = terminated or truncated
         frame = Frame(
-                state,
-                environment,
-                action.astype(np.float32),
-                images,
-                float(reward),
-                done,
-                bool(info["is_success"]),
-                primitive,
-                brick,
-            )  # fmt: skip
+            state,
+            environment,
+            action.astype(np.float32),
+            images,
+            float(reward),
+            done,
+            bool(info["is_success"]),
+            primitive,
+            brick,
+        )
         if waypoints is not None:  # led as waypoints, given back in the mode's form
             waypoint, form = waypoints
             led(replace(frame, action=waypoint.astype(np.float32)), hands, form)
@@ -157,3 +150,14 @@ def expert_episode(
             failure = info["failure"] or (None if terminated else f"step limit: {limit} steps")
             learner = mixer.learner_steps if mixer is not None else 0
             return EpisodeEnd(frames, info["is_success"], failure, info["result"], learner)
+
+
+def _step(env: BuildEnv, obs: dict[str, Any], executed: np.ndarray, mixer: Mixer | None) -> Any:
+    """`env.step` with the expert's action as `executed`, or a DAgger learner's where the
+    `mixer` hands it the span; PolicyError for a learner's action outside the space."""
+    if mixer is not None:
+        executed = mixer(obs, executed)
+    try:
+        return env.step(executed)
+    except ActionError as err:  # only a learner's action can be outside the space
+        raise PolicyError(f"policy: act() gave an {err}") from err

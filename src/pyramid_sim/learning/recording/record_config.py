@@ -81,8 +81,7 @@ class RecordConfig:
             randomize=self.randomize,
             action_mode=self.action_mode,
             linger=self.linger,
-            brick_poses=self.brick_poses,
-            all_goals=self.all_goals,
+            **self.observed._asdict(),
             **self.options,
         )
 
@@ -157,8 +156,7 @@ def recording_of(
         task.limit_commands,
         action_mode=task.action_mode,
         linger=task.linger,
-        brick_poses=task.brick_poses,
-        all_goals=task.all_goals,
+        **task.observed._asdict(),
         **run,
     )
 

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from ...errors import ConfigError
+from ..task.observation_names import OBSERVED, Observed
 from .record_config import RecordConfig
 
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
@@ -20,7 +21,8 @@ RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", 
 DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
 # Settings added since the first recordings, as an episode recorded before them had them (and
 # as a record leaves out the one whose default it keeps: the bricks' poses observed).
-LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0, "brick_poses": True, "all_goals": True}
+# What is observed (`Observed`) is among them, each at its default.
+LATER_SETTINGS = {"action_mode": "joint", "linger": 0.0, **Observed()._asdict()}
 
 
 def settings_of(config: RecordConfig) -> dict[str, Any]:
@@ -29,7 +31,7 @@ def settings_of(config: RecordConfig) -> dict[str, Any]:
     doc: dict[str, Any] = json.loads(json.dumps(asdict(config), default=str))
     for name in DRIVER:
         del doc[name]
-    for observed in ("brick_poses", "all_goals"):  # a default, which records made before held
+    for observed in OBSERVED:  # a default, which records made before held
         if doc[observed]:
             del doc[observed]
     return doc

@@ -3,7 +3,8 @@ environment, a recording and lerobot's plugin. Pure: no MuJoCo."""
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from collections.abc import Mapping
+from typing import Any, NamedTuple
 
 from ...choices import ARMS
 
@@ -28,6 +29,19 @@ class Observed(NamedTuple):
         if not self.all_goals:
             keys += ["goals"] if "placed" in keys else ["goals", "placed"]
         return tuple(keys)
+
+    @property
+    def size_free(self) -> bool:
+        """Whether the observation's width is the same whatever the structure's size (each
+        arm's next goal alone): a policy trained on one size meets another."""
+        return not self.all_goals
+
+    @classmethod
+    def read(cls, saved: Mapping[str, Any]) -> Observed:
+        """What a saved recording's or env's settings (`saved`, by the fields' names) say
+        was observed, each field's default where it says nothing (made before the field)."""
+        default = cls()
+        return cls(*(bool(saved.get(name, getattr(default, name))) for name in cls._fields))
 
 
 OBSERVED = Observed._fields  # the names of what can be left out of an observation

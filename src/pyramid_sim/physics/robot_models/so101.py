@@ -1,7 +1,8 @@
 """The SO-101 pair's model: the vendored so101.xml (assets/robots/so101/), once per arm,
 attached as `left/` and `right/` at the preset's bases on the table top.
 
-What is changed from the vendored model, and why (docs/so101_groundwork.md measured it):
+What is changed from the vendored model, and why (measured in
+docs/notes/2026-11-25-so101-groundwork.md):
 - the jaws' mesh hulls do not collide: a hull fills the gap between the jaws, so no brick
   would fit; two thin pads on the tips' inner faces do (common.py's pad contact), and the
   model's own inert pads go;
@@ -71,21 +72,31 @@ def _add_pads(
     h, j = model.body(HAND).id, model.body(JAW).id
     rot_h, rot_j = data.xmat[h].reshape(3, 3), data.xmat[j].reshape(3, 3)
     fixed, moving = (local(p) for p in arm.pads)
-    hand.add_geom(name=fixed, type=mujoco.mjtGeom.mjGEOM_BOX, size=PAD_HALF,
-                  pos=[FIXED_FACE_X - PAD_HALF[0], PAD_Y, PAD_Z])  # fmt: skip
+    hand.add_geom(
+        name=fixed,
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=PAD_HALF,
+        pos=[FIXED_FACE_X - PAD_HALF[0], PAD_Y, PAD_Z],
+    )
     at = data.xpos[h] + rot_h @ np.array([MOVING_FACE_X + PAD_HALF[0], PAD_Y, PAD_Z])
     quat = np.zeros(4)
     mujoco.mju_mat2Quat(quat, (rot_j.T @ rot_h).flatten())
-    jaw.add_geom(name=moving, type=mujoco.mjtGeom.mjGEOM_BOX, size=PAD_HALF,
-                 pos=rot_j.T @ (at - data.xpos[j]), quat=quat)  # fmt: skip
+    jaw.add_geom(
+        name=moving,
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=PAD_HALF,
+        pos=rot_j.T @ (at - data.xpos[j]),
+        quat=quat,
+    )
 
 
 def _add_tool(hand: mujoco.MjsBody, arm: ArmDescription, at: list[float]) -> None:
     """The tool point and the wrist camera on the hand."""
     quat = np.zeros(4)
     mujoco.mju_mat2Quat(quat, TOOL_AXES.flatten())
-    hand.add_site(name=local(arm.tcp_site), pos=at, quat=quat, size=[0.003, 0, 0],
-                  rgba=[0, 1, 0, 0])  # fmt: skip
+    hand.add_site(
+        name=local(arm.tcp_site), pos=at, quat=quat, size=[0.003, 0, 0], rgba=[0, 1, 0, 0]
+    )
     eye = np.array(CAMERA_AT)
     back = (eye - np.array(CAMERA_LOOKS_AT)) / np.linalg.norm(eye - np.array(CAMERA_LOOKS_AT))
     right = np.array([0.0, 1.0, 0.0])  # the jaws close across the image
