@@ -179,6 +179,8 @@ MAX_STEPS = Bound("max steps", 1, 10_000_000)
 NOISE = Bound("noise", 0.0, 0.05)  # rad: DART's offset on the executed joint targets
 LINGER = Bound("linger", 0.0, 10.0)  # s an episode goes on after its build succeeded
 BETA = Bound("beta", 0.0, 1.0)  # DAgger's: the share of an episode's spans the expert drives
+# m a learner's hand may drift from the expert's way before the expert takes over (HG-DAgger)
+TAKEOVER = Bound("takeover", 0.0, 0.2, low_open=True)
 IMAGE_HEIGHT = Bound("image height", 16, 1080)  # pixels, even
 IMAGE_WIDTH = Bound("image width", 16, 1920)
 IMAGE_SIZE_TEXT = f"even, {IMAGE_HEIGHT.whole_text} high and {IMAGE_WIDTH.whole_text} wide"

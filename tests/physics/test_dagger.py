@@ -195,3 +195,39 @@ def test_a_bad_round_is_refused_in_one_line_writing_nothing(argv, words, tmp_pat
     )
     assert done.returncode == 2 and words in done.stderr, done.stderr
     assert len(done.stderr.strip().splitlines()) == 1 and not (tmp_path / "d").exists()
+
+
+def test_a_gated_round_keeps_the_learners_steps_within_the_gate_and_builds(tmp_path):
+    """HG-DAgger: the `zero` learner holds its hands still; its own steps are kept while the
+    expert's way is within 2 cm of them, past that the expert takes the rest of the span, and
+    the episode builds; the record says how often the gate closed."""
+    root = tmp_path / "gated"
+    recorded = _record(root, 1, policy="zero", beta=0.0, takeover=0.02)
+    assert recorded.failed == ()
+    driver, _ = _driver(root, 0)
+    frames = len(_frames(root, 0)["action"])
+    assert driver["takeover"] == 0.02 and driver["takeovers"] > 0
+    assert 0 < driver["learner_steps"] < frames
+    assert driver["takeovers"] <= frames / 20 + 1  # at most once a 2 s span of 20 frames
+
+
+@pytest.mark.parametrize(
+    ("extra", "said"),
+    [
+        (dict(takeover=0.02), "takeover: 0.02 without a policy drives nothing"),
+        (dict(policy="zero", takeover=0.0), r"takeover: 0 is out of range; accepted \(0, 0.2\]"),
+        (dict(policy="zero", takeover=0.5), "takeover: 0.5 is out of range"),
+    ],
+)
+def test_a_gate_without_a_learner_or_out_of_range_is_refused(tmp_path, extra, said):
+    with pytest.raises(pyramid_sim.errors.ConfigError, match=said):
+        _record(tmp_path / "d", 1, **extra)
+    assert not (tmp_path / "d").exists()
+
+
+def test_record_takeover_without_a_policy_is_one_line_and_exit_2(tmp_path):
+    flags = ["--layers", "1", "--takeover", "0.02", "--out", str(tmp_path / "d")]
+    command = [sys.executable, "-m", "pyramid_sim.cli", "record", *flags]
+    done = subprocess.run(command, capture_output=True, text=True)
+    assert done.returncode == 2 and "takeover" in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1 and not (tmp_path / "d").exists()

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..choices import EVAL_FIRST_SEED, RECORD_ACTION_MODES, RECORD_IMAGE_SIZE, RECORD_LINGER
 from ..errors import ConfigError
-from ..params import BETA, NOISE, WORKERS
+from ..params import BETA, NOISE, TAKEOVER, WORKERS
 from .args import (
     add_backend_args,
     add_out_args,
@@ -72,7 +72,7 @@ def _add_run_args(p: argparse.ArgumentParser) -> None:
 
 
 def _add_dagger_args(p: argparse.ArgumentParser) -> None:
-    """--policy and --beta: a DAgger round (learning/recording/dagger.py)."""
+    """--policy, --beta and --takeover: a DAgger round (learning/recording/dagger.py)."""
     p.add_argument(
         "--policy",
         default=None,
@@ -89,6 +89,15 @@ def _add_dagger_args(p: argparse.ArgumentParser) -> None:
         metavar="SHARE",
         help=f"with --policy, DAgger's beta: the share of spans the expert drives; {BETA.text} "
         "(default 0.5; refused without --policy)",
+    )
+    p.add_argument(
+        "--takeover",
+        type=bounded(TAKEOVER),
+        default=None,
+        metavar="M",
+        help="with --policy, HG-DAgger's gate: the learner's own actions kept while its hands "
+        f"are within M metres of the expert's way, the expert taking the rest of the span past "
+        f"it; {TAKEOVER.text} (default none: each hand pulled back to within 5 mm)",
     )
 
 
@@ -130,7 +139,7 @@ def cmd_record(args: argparse.Namespace) -> int:
             backend=args.backend,
             ray_address=args.ray_address,
             noise=args.noise,
-            **_driver(args.policy, args.beta),
+            **_driver(args.policy, args.beta, args.takeover),
             repair=args.repair,
         )
         progress.advance_to(args.episodes)
@@ -146,10 +155,10 @@ def cmd_record(args: argparse.Namespace) -> int:
     return 1 if recorded.failed else 0
 
 
-def _driver(policy: str | None, beta: float | None) -> dict[str, object]:
-    """A DAgger round's `policy` and `beta`, those given (beta without a policy is refused
-    by the recording)."""
-    given = {"policy": policy, "beta": beta}
+def _driver(policy: str | None, beta: float | None, takeover: float | None) -> dict[str, object]:
+    """A DAgger round's `policy`, `beta` and `takeover`, those given (either of the last two
+    without a policy is refused by the recording)."""
+    given = {"policy": policy, "beta": beta, "takeover": takeover}
     return {k: v for k, v in given.items() if v is not None}
 
 

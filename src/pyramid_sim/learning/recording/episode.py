@@ -49,6 +49,7 @@ class EpisodeEnd:
     failure: str | None
     result: dict[str, Any]
     learner_steps: int = 0  # steps a learner drove (DAgger: dagger.py)
+    takeovers: int = 0  # spans the expert took back past HG-DAgger's gate
 
 
 def _doing(env: BuildEnv) -> tuple[tuple[int, int], tuple[int, int]]:
@@ -148,8 +149,8 @@ def expert_episode(
         frames += 1
         if done:
             failure = info["failure"] or (None if terminated else f"step limit: {limit} steps")
-            learner = mixer.learner_steps if mixer is not None else 0
-            return EpisodeEnd(frames, info["is_success"], failure, info["result"], learner)
+            learner, taken = (mixer.learner_steps, mixer.takeovers) if mixer else (0, 0)
+            return EpisodeEnd(frames, info["is_success"], failure, info["result"], learner, taken)
 
 
 def _step(env: BuildEnv, obs: dict[str, Any], executed: np.ndarray, mixer: Mixer | None) -> Any:

@@ -16,7 +16,7 @@ from ...output.replay_tape import EPISODES_FOLDER, EpisodeTape, Taping, episode_
 from ..dataset import lerobot_format as fmt
 from ..env.env import BuildEnv
 from ..task.observation_names import environment_names
-from .dagger import Mixer, bounded
+from .dagger import Mixer, bounded, taken_over
 from .episode import Frame, expert_episode
 from .record_config import RecordConfig
 from .staging import REFUSED, staging_folder
@@ -148,7 +148,11 @@ def film_episode(
     try:
         seed = config.first_seed + files.episode
         scale = env.config.robot_description.length_scale
-        bound = partial(bounded, env.mode, scale=scale)
+        bound = (
+            partial(bounded, env.mode, scale=scale)
+            if config.takeover is None
+            else partial(taken_over, env.mode, threshold=config.takeover, scale=scale)
+        )
         mixer = None if learner is None else Mixer(learner, config.fps, seed, config.beta, bound)
         rolled = env if tape is None else cast(BuildEnv, Taping(env, tape))
         end = expert_episode(rolled, seed, config.cameras, keep, config.noise, mixer)

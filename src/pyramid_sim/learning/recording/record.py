@@ -204,6 +204,8 @@ class _Landing:
                 "beta": config.beta,
                 "learner_steps": end.learner_steps,
             }
+            if config.takeover is not None:  # HG-DAgger's gate, and how often it closed
+                record["driver"].update(takeover=config.takeover, takeovers=end.takeovers)
         _write_text(out / RECORDS / f"episode_{episode:06d}.json", json.dumps(record, indent=1))
         if self.added == 0:  # this run's first: the files every episode shares
             meta.write_tasks(out, self.task)

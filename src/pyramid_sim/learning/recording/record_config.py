@@ -17,7 +17,7 @@ from ...config import MotionConfig
 from ...errors import ConfigError
 from ...jobs.backends import check_backend
 from ...options import names_argument, plain_numbers
-from ...params import BETA, EPISODES, LINGER, NOISE, WORKERS
+from ...params import BETA, EPISODES, LINGER, NOISE, TAKEOVER, WORKERS
 from ..action_modes.unbuilt import check_mode_for_robot
 from ..task.observation_names import Observed
 from ..task.randomize import check_parts
@@ -28,7 +28,7 @@ from ..task.variation import DEFAULT_LEVEL, check_level
 CAMERA_NAMES = "overview, front, top, left_wrist, right_wrist"
 # The keywords of a recording's run, beside its task spec's: how many at once and where, and
 # a DAgger round's driver
-RUN_KEYWORDS = ("workers", "backend", "ray_address", "noise", "policy", "beta")
+RUN_KEYWORDS = ("workers", "backend", "ray_address", "noise", "policy", "beta", "takeover")
 # A task spec's fields a recording hands its environment as given, where not the default
 FILM_FIELDS = ("footprints", "render_mode", "width", "height", "camera_name")
 RANDOMIZED = "all, none, or some of the parts"
@@ -59,6 +59,9 @@ class RecordConfig:
     # expert does not (the expert's share `beta`), the expert labelling every frame
     policy: str | None = None
     beta: float = 0.5
+    # HG-DAgger: the learner's own actions kept while its hands are within `takeover` m of the
+    # expert's way, the expert taking the rest of the span past it (None: pulled back to 5 mm)
+    takeover: float | None = None
     # the bricks' poses (and the goals' fill, judged from them) observed: False for a policy
     # that sees the bricks through its cameras alone
     brick_poses: bool = True
@@ -106,6 +109,8 @@ class RecordConfig:
         NOISE.check(self.noise)
         LINGER.check(self.linger)
         BETA.check(self.beta)
+        if self.takeover is not None:
+            object.__setattr__(self, "takeover", TAKEOVER.checked(self.takeover))
         if self.policy is not None and (not isinstance(self.policy, str) or not self.policy):
             raise ConfigError(
                 f"policy: {self.policy!r} is not one; accepted a lerobot checkpoint folder, "
@@ -130,15 +135,17 @@ def recording_of(
     task: TaskSpec, episodes: Any = 1, first_seed: Any = 0, **run: Any
 ) -> RecordConfig:
     """The recording of `task`'s episodes from `first_seed` on, `run` as RUN_KEYWORDS names
-    them (ConfigError naming those for another; `beta` without a `policy` is refused)."""
+    them (ConfigError naming those for another; `beta` or `takeover` without a `policy` is
+    refused)."""
     for name in run:
         if name not in RUN_KEYWORDS:
             raise ConfigError(f"record: unknown {name!r}; accepted {', '.join(RUN_KEYWORDS)}")
-    if "beta" in run and run.get("policy") is None:
-        raise ConfigError(
-            f"beta: {run['beta']!r} without a policy drives nothing; accepted beta with a "
-            "policy (a DAgger round), or neither"
-        )
+    for name in ("beta", "takeover"):
+        if run.get(name) is not None and run.get("policy") is None:
+            raise ConfigError(
+                f"{name}: {run[name]!r} without a policy drives nothing; accepted {name} with a "
+                "policy (a DAgger round), or neither"
+            )
     config, _ = task.resolved()
     defaults = TaskSpec()
     film = {k: getattr(task, k) for k in FILM_FIELDS if getattr(task, k) != getattr(defaults, k)}
