@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from baseline import commit  # noqa: E402
+from row_result import commit  # noqa: E402
 from script_checks import lerobot_needed  # noqa: E402
 
 from pyramid_sim.cli.args import Parser, output_path  # noqa: E402
