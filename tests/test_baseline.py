@@ -147,9 +147,13 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
 
 def _driven(root: Path, index: int, success: bool, failure: str | None, steps: int = 10):
     folder = root / "demos" / "meta" / "pyramid_sim"
-    record = {"episode_index": index, "success": success, "failure": failure,
-              "row": {"length": 20}, "driver": {"policy": "p", "beta": 0.5,
-                                                 "learner_steps": steps}}  # fmt: skip
+    record = {
+        "episode_index": index,
+        "success": success,
+        "failure": failure,
+        "row": {"length": 20},
+        "driver": {"policy": "p", "beta": 0.5, "learner_steps": steps},
+    }
     (folder / f"episode_{index:06d}.json").write_text(json.dumps(record))
 
 
@@ -163,16 +167,22 @@ def test_daggers_episodes_are_learned_from_but_those_that_ran_out_of_steps(tmp_p
     _driven(tmp_path, 4, False, "step limit: 900 steps")
     assert row_recording.built(tmp_path / "demos") == [0, 2, 3]
     summary = row_dagger.round_summary(tmp_path / "demos", range(2, 5), rows.Round(3, 0.5, 7))
-    assert summary == {"episodes": 3, "beta": 0.5, "steps": 7, "built": 1, "kept": 2,
-                       "learner_share": 0.5}  # fmt: skip
+    assert summary == {
+        "episodes": 3,
+        "beta": 0.5,
+        "steps": 7,
+        "built": 1,
+        "kept": 2,
+        "learner_share": 0.5,
+    }
 
 
 def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
     out, recipe, results = baseline.parse(["--out", str(tmp_path / "a"), "--row", "panda-6"])
     assert recipe == rows.ROWS["panda-6"] and results is None
     assert (recipe.layers, recipe.track, recipe.row) == (2, "keypose", "panda-6")
-    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--row", "so101-2",
-                                   "--steps", "7", "--results", str(tmp_path / "r")])  # fmt: skip
+    flags = ["--row", "so101-2", "--steps", "7", "--results", str(tmp_path / "r")]
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), *flags])
     assert (recipe.robot, recipe.steps) == ("so101", 7)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--row", "nosuch"])
@@ -199,10 +209,17 @@ def test_a_dagger_round_trains_on_from_the_last_rounds_policy(tmp_path, monkeypa
 def test_the_result_file_holds_the_score_its_inputs_and_where_it_ran(tmp_path):
     _records(tmp_path, [True, False])
     _driven(tmp_path, 2, True, None)
-    evaluation = {"episodes": 10, "successes": 7, "success_rate": 0.7,
-                  "success_rate_95": [0.4, 0.9], "bricks_placed_mean": 1.7, "failures": {},
-                  "protocol": {"first_seed": 100000}, "bricks": 2,
-                  "versions": {"pyramid_sim": "x"}}  # fmt: skip
+    evaluation = {
+        "episodes": 10,
+        "successes": 7,
+        "success_rate": 0.7,
+        "success_rate_95": [0.4, 0.9],
+        "bricks_placed_mean": 1.7,
+        "failures": {},
+        "protocol": {"first_seed": 100000},
+        "bricks": 2,
+        "versions": {"pyramid_sim": "x"},
+    }
     recipe = rows.ROWS["panda-2"]
     doc = row_result.result(recipe, evaluation, {"train": 5.0}, tmp_path / "demos", [])
     assert doc["score"]["successes"] == 7 and doc["score"]["success_rate_95"] == [0.4, 0.9]
@@ -224,11 +241,19 @@ def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_scores_it(tmp_pa
     commands = _trainings(monkeypatch)
     recipe = rows.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
     row_training.train(tmp_path, recipe)
-    env = ["--env.type=pyramid_sim", "--env.robot=panda", "--env.task=pyramid-even",
-           "--env.layers=1", "--env.variation=layout", "--env.fps=10",
-           "--env.action_mode=anchored", '--env.cameras=["overview"]',
-           "--env.observation_height=96", "--env.observation_width=96",
-           "--env.episode_length=300"]  # fmt: skip
+    env = [
+        "--env.type=pyramid_sim",
+        "--env.robot=panda",
+        "--env.task=pyramid-even",
+        "--env.layers=1",
+        "--env.variation=layout",
+        "--env.fps=10",
+        "--env.action_mode=anchored",
+        '--env.cameras=["overview"]',
+        "--env.observation_height=96",
+        "--env.observation_width=96",
+        "--env.episode_length=300",
+    ]
     assert [a for a in commands[0] if a.startswith("--env")] == [*env, "--env_eval_freq=0"]
     checkpoint = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model"
     line = shlex.split(row_scoring.lerobot_eval_line(checkpoint, tmp_path, recipe))
@@ -244,8 +269,13 @@ def test_each_rounds_policy_is_scored_once_and_read_back_after(tmp_path, monkeyp
 
     def fake_score(checkpoint, recipe, episodes, out):
         scored.append((checkpoint, episodes, out))
-        found = {"episodes": episodes, "successes": len(scored), "success_rate": 0.5,
-                 "success_rate_95": [0.3, 0.7], "bricks_placed_mean": 1.0}  # fmt: skip
+        found = {
+            "episodes": episodes,
+            "successes": len(scored),
+            "success_rate": 0.5,
+            "success_rate_95": [0.3, 0.7],
+            "bricks_placed_mean": 1.0,
+        }
         out.mkdir(parents=True)
         (out / "evaluation.json").write_text(json.dumps(found))
         return found
