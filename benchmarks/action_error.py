@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from baseline import commit  # noqa: E402
+from row_result import commit  # noqa: E402
 from script_checks import lerobot_needed  # noqa: E402
 
 from pyramid_sim.cli.args import Parser, output_path  # noqa: E402
@@ -59,8 +59,10 @@ def parse(argv: list[str] | None) -> Any:
             f"seeds: {args.seeds!r}; accepted whole numbers 0 to 2**32 - 1 separated by commas"
         )
     if args.policy == "expert":  # a second expert would step the episode's own expert's plan
-        parser.error("policy: 'expert' gives the labels; accepted a lerobot checkpoint, zero, "
-                     "random or module:factory")  # fmt: skip
+        parser.error(
+            "policy: 'expert' gives the labels; accepted a lerobot checkpoint, zero, "
+            "random or module:factory"
+        )
     if not 1 <= args.max_steps <= 100000:
         parser.error(f"max steps: {args.max_steps}; accepted 1 to 100000")
     try:
@@ -91,13 +93,23 @@ def make(args: Any) -> tuple[Any, Any]:
     trained = read_training(Path(args.policy)) if Path(args.policy).is_dir() else None
     if trained is not None:
         env = BuildEnv(
-            trained.structure, **trained.size, variation=trained.variation, fps=trained.fps,
-            action_mode=trained.action_mode, brick_poses=trained.brick_poses,
-            all_goals=trained.all_goals, linger=2.0,
-        )  # fmt: skip
+            trained.structure,
+            **trained.size,
+            variation=trained.variation,
+            fps=trained.fps,
+            action_mode=trained.action_mode,
+            brick_poses=trained.brick_poses,
+            all_goals=trained.all_goals,
+            linger=2.0,
+        )
     else:
-        env = BuildEnv(args.structure, layers=args.layers, action_mode=args.action_mode,
-                       fps=args.fps, linger=2.0)  # fmt: skip
+        env = BuildEnv(
+            args.structure,
+            layers=args.layers,
+            action_mode=args.action_mode,
+            fps=args.fps,
+            linger=2.0,
+        )
     return env, make_policy(args.policy, env)
 
 
@@ -119,8 +131,15 @@ def measure(env: Any, policy: Any, driver: str, seeds: list[int], max_steps: int
             observation, _, terminated, truncated, info = env.step(executed.astype(np.float32))
             if terminated or truncated:
                 break
-        ends.append({"seed": seed, "steps": steps, "success": bool(info["is_success"]),
-                     "bricks_placed": int(info["bricks_placed"]), "failure": info["failure"]})  # fmt: skip
+        ends.append(
+            {
+                "seed": seed,
+                "steps": steps,
+                "success": bool(info["is_success"]),
+                "bricks_placed": int(info["bricks_placed"]),
+                "failure": info["failure"],
+            }
+        )
     error, label = np.array(errors), np.array(labels)
     names = env.mode.names
     return {

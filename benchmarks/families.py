@@ -15,8 +15,12 @@ if TYPE_CHECKING:
 ACT_NORMALIZED = {kind: "MEAN_STD" for kind in ("VISUAL", "STATE", "ENV", "ACTION")}
 # Diffusion Policy denoises actions clipped to [-1, 1]: its actions and state scaled to that
 # range by their bounds (its own default), the environment state too (left raw by default)
-DIFFUSION_NORMALIZED = {"VISUAL": "MEAN_STD", "STATE": "MIN_MAX", "ENV": "MIN_MAX",
-                        "ACTION": "MIN_MAX"}  # fmt: skip
+DIFFUSION_NORMALIZED = {
+    "VISUAL": "MEAN_STD",
+    "STATE": "MIN_MAX",
+    "ENV": "MIN_MAX",
+    "ACTION": "MIN_MAX",
+}
 LABELS = {"act": "ACT (lerobot-train)", "diffusion": "Diffusion Policy (lerobot-train)"}
 
 
@@ -46,9 +50,9 @@ def diffusion_flags(r: Recipe) -> list[str]:
     512-1024-2048), `chunk` actions predicted from
     `obs_steps` observations and `action_steps` of them executed, and DDIM's
     `inference_steps` denoising steps at run time where DDPM takes all 100."""
-    normalized = DIFFUSION_NORMALIZED if r.normalize_environment else {
-        k: v for k, v in DIFFUSION_NORMALIZED.items() if k != "ENV"
-    }  # fmt: skip
+    normalized = dict(DIFFUSION_NORMALIZED)
+    if not r.normalize_environment:
+        del normalized["ENV"]
     return [
         "--policy.type=diffusion",
         f"--policy.n_obs_steps={r.obs_steps}",

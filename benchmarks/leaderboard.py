@@ -28,8 +28,28 @@ RESULTS = REPO / "benchmarks" / "results"
 PAGE = REPO / "docs" / "benchmark.md"
 START, END = "<!-- leaderboard: start -->", "<!-- leaderboard: end -->"
 DAGGER_START, DAGGER_END = "<!-- dagger: start -->", "<!-- dagger: end -->"
-COLUMNS = ("track", "task", "robot", "policy", "action mode", "inputs", "demos",
-           "training", "success (95 % interval)", "films (3D replay)", "commit", "reproduce")  # fmt: skip
+COLUMNS = (
+    "track",
+    "task",
+    "robot",
+    "policy",
+    "action mode",
+    "inputs",
+    "demos",
+    "training",
+    "success (95 % interval)",
+    "films (3D replay)",
+    "commit",
+    "reproduce",
+)
+DAGGER_COLUMNS = (
+    "row",
+    "round",
+    "episodes added (beta, kept)",
+    "training steps",
+    "success",
+    "bricks placed",
+)
 TRACK_ORDER = {"keypose": 0, "continuous": 1}
 
 
@@ -133,9 +153,14 @@ def _films(row: dict[str, Any], folder: Path | None) -> str:
     return ", ".join(cells) or "-"
 
 
+def header(columns: tuple[str, ...]) -> list[str]:
+    """A markdown table's first two lines: its columns' names and the line under them."""
+    return ["| " + " | ".join(columns) + " |", "|" + " --- |" * len(columns)]
+
+
 def table(rows: list[dict[str, Any]], films_folder: Path | None = None) -> str:
     """The leaderboard's markdown table (the films from results/films/, or `films_folder`)."""
-    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + " --- |" * len(COLUMNS)]
+    lines = header(COLUMNS)
     for row in rows:
         cells = (
             row["track"],
@@ -158,8 +183,7 @@ def table(rows: list[dict[str, Any]], films_folder: Path | None = None) -> str:
 def dagger_table(rows: list[dict[str, Any]]) -> str:
     """Each row's DAgger rounds, one line a round: what it added and what its policy scored
     (round 0 is the first training's), from the rows whose result files hold the scores."""
-    lines = ["| row | round | episodes added (beta, kept) | training steps | success | bricks placed |",
-             "| --- | --- | --- | --- | --- | --- |"]  # fmt: skip
+    lines = header(DAGGER_COLUMNS)
     for row in rows:
         dagger = row.get("dagger") or {}
         added = {k + 1: r for k, r in enumerate(dagger.get("rounds") or [])}

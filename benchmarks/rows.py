@@ -160,7 +160,7 @@ ROWS: dict[str, Recipe] = {
             image_size=(96, 96),
             brick_poses=False,
             steps=2000,
-        ),  # fmt: skip
+        ),
         # a second policy family on the 2-brick keypose task: lerobot's Diffusion Policy sized
         # for a CPU (docs/benchmark.md says how), trained on panda-2's demonstrations
         # (a 64-128-256 U-Net, 5 M weights, a horizon of 16 with 8 executed, as its authors'
@@ -180,9 +180,23 @@ ROWS: dict[str, Recipe] = {
         ),
     )
 }
-QUICK = dict(demos=2, noise=0.0, steps=4, save_every=2, batch_size=4, dim_model=64, heads=2,
-             feedforward=128, encoder_layers=1, decoder_layers=1, chunk=10, action_steps=10,
-             episodes=2, max_steps=100, rounds=())  # fmt: skip
+QUICK = dict(
+    demos=2,
+    noise=0.0,
+    steps=4,
+    save_every=2,
+    batch_size=4,
+    dim_model=64,
+    heads=2,
+    feedforward=128,
+    encoder_layers=1,
+    decoder_layers=1,
+    chunk=10,
+    action_steps=10,
+    episodes=2,
+    max_steps=100,
+    rounds=(),
+)
 
 
 # Diffusion Policy's horizon a multiple of its U-Net's downsampling (2 for two widths), and

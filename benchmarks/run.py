@@ -19,7 +19,8 @@ from pyramid_sim.output.gl_backend import choose_gl_backend
 from pyramid_sim.robots import DEFAULT_ROBOT, PRESETS
 
 
-def main(argv: list[str] | None = None) -> int:
+def build_parser() -> Parser:
+    """The script's flags."""
     parser = Parser(prog="benchmarks/run.py", description=__doc__.splitlines()[0])
     parser.add_argument(
         "--json",
@@ -57,7 +58,11 @@ def main(argv: list[str] | None = None) -> int:
         default=2,
         help="alternated 1- and 2-worker sweeps, best of each (default 2)",
     )
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
     try:
         choose_gl_backend()  # before mujoco is imported
         from pyramid_sim.perf.figures import BenchConfig, run_all

@@ -9,6 +9,12 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import baseline  # noqa: E402
+import row_dagger  # noqa: E402
+import row_recording  # noqa: E402
+import row_result  # noqa: E402
+import row_scoring  # noqa: E402
+import row_training  # noqa: E402
+import rows  # noqa: E402
 
 from pyramid_sim.errors import PyramidSimError  # noqa: E402
 
@@ -21,7 +27,7 @@ def _trainings(monkeypatch) -> list[list[str]]:
         commands.append(command)
         return type("Done", (), {"returncode": 0})()
 
-    monkeypatch.setattr(baseline.subprocess, "run", fake_run)
+    monkeypatch.setattr(row_training.subprocess, "run", fake_run)
     return commands
 
 
@@ -35,15 +41,15 @@ def _records(root: Path, successes: list[bool]) -> None:
 
 def test_only_the_episodes_that_built_are_trained_on(tmp_path):
     _records(tmp_path, [True, False, True])
-    assert baseline.built(tmp_path / "demos") == [0, 2]
+    assert row_recording.built(tmp_path / "demos") == [0, 2]
 
 
 def test_a_recording_where_nothing_built_is_refused_before_training(tmp_path):
     _records(tmp_path, [False, False])
     with pytest.raises(PyramidSimError, match="no recorded episode built"):
-        baseline.train(tmp_path, baseline.Recipe())
+        row_training.train(tmp_path, rows.Recipe())
     assert not (tmp_path / "train.log").exists()
-    assert baseline.trained_before(tmp_path) is None  # nothing trained to go on from
+    assert row_training.trained_before(tmp_path) is None  # nothing trained to go on from
 
 
 def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
@@ -54,8 +60,8 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
     kept beside the log."""
     _records(tmp_path, [True])
     commands = _trainings(monkeypatch)
-    baseline.train(tmp_path, baseline.Recipe())
-    baseline.train(tmp_path, baseline.Recipe(normalize_environment=False))
+    row_training.train(tmp_path, rows.Recipe())
+    row_training.train(tmp_path, rows.Recipe(normalize_environment=False))
     wanted = [a for a in commands[0] if a.startswith("--policy.normalization_mapping=")]
     assert len(wanted) == 1 and json.loads(wanted[0].split("=", 1)[1])["ENV"] == "MEAN_STD"
     assert not [a for a in commands[1] if "normalization_mapping" in a]
@@ -66,7 +72,7 @@ def test_the_training_normalizes_the_environment_state_and_keeps_its_cpu_time(
 def test_the_action_mode_and_its_noise_are_the_recipes_unless_given(tmp_path, capsys):
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert (recipe.action_mode, recipe.noise) == ("anchored", 0.005)  # metres on each hand
-    assert recipe.fps == baseline.Recipe.fps
+    assert recipe.fps == rows.Recipe.fps
     given = ["--out", str(tmp_path / "b"), "--action-mode", "relative", "--noise", "0.003"]
     _, recipe, _ = baseline.parse([*given, "--fps", "25"])
     assert (recipe.action_mode, recipe.noise, recipe.fps) == ("relative", 0.003, 25)
@@ -89,7 +95,7 @@ def test_the_recipes_linger_reaches_the_recording_and_one_out_of_range_is_refuse
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.linger == 2.0  # the last release filmed
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
-    baseline.record(tmp_path, recipe)
+    row_recording.record(tmp_path, recipe)
     assert calls["record"]["linger"] == 0.5
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--linger", "11"])
@@ -112,9 +118,9 @@ def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, mon
 
     monkeypatch.setattr(pyramid_sim, "record", recorded)
     monkeypatch.setattr(pyramid_sim, "evaluate", evaluated)
-    recipe = baseline.Recipe(fps=25)  # not the default
-    baseline.record(tmp_path, recipe)
-    baseline.score(tmp_path / "checkpoint", recipe, 2, None)
+    recipe = rows.Recipe(fps=25)  # not the default
+    row_recording.record(tmp_path, recipe)
+    row_scoring.score(tmp_path / "checkpoint", recipe, 2, None)
     assert calls["record"]["fps"] == 25 and calls["evaluate"]["fps"] == 25
 
 
@@ -129,7 +135,7 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     assert recipe.image_size == (224, 224)  # record's default
     given = ["--out", str(tmp_path / "b"), "--cameras", "overview", "--image-size", "96"]
     _, recipe, _ = baseline.parse(given)
-    baseline.record(tmp_path, recipe)
+    row_recording.record(tmp_path, recipe)
     assert calls["record"]["image_size"] == (96, 96)
     assert calls["record"]["cameras"] == ("overview",)
     with pytest.raises(SystemExit) as stopped:
@@ -141,9 +147,13 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
 
 def _driven(root: Path, index: int, success: bool, failure: str | None, steps: int = 10):
     folder = root / "demos" / "meta" / "pyramid_sim"
-    record = {"episode_index": index, "success": success, "failure": failure,
-              "row": {"length": 20}, "driver": {"policy": "p", "beta": 0.5,
-                                                 "learner_steps": steps}}  # fmt: skip
+    record = {
+        "episode_index": index,
+        "success": success,
+        "failure": failure,
+        "row": {"length": 20},
+        "driver": {"policy": "p", "beta": 0.5, "learner_steps": steps},
+    }
     (folder / f"episode_{index:06d}.json").write_text(json.dumps(record))
 
 
@@ -155,24 +165,30 @@ def test_daggers_episodes_are_learned_from_but_those_that_ran_out_of_steps(tmp_p
     _driven(tmp_path, 2, True, None)
     _driven(tmp_path, 3, False, "a joint demanded 2.00 of its torque limit")
     _driven(tmp_path, 4, False, "step limit: 900 steps")
-    assert baseline.built(tmp_path / "demos") == [0, 2, 3]
-    summary = baseline._round_summary(tmp_path / "demos", range(2, 5), baseline.Round(3, 0.5, 7))
-    assert summary == {"episodes": 3, "beta": 0.5, "steps": 7, "built": 1, "kept": 2,
-                       "learner_share": 0.5}  # fmt: skip
+    assert row_recording.built(tmp_path / "demos") == [0, 2, 3]
+    summary = row_dagger.round_summary(tmp_path / "demos", range(2, 5), rows.Round(3, 0.5, 7))
+    assert summary == {
+        "episodes": 3,
+        "beta": 0.5,
+        "steps": 7,
+        "built": 1,
+        "kept": 2,
+        "learner_share": 0.5,
+    }
 
 
 def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
     out, recipe, results = baseline.parse(["--out", str(tmp_path / "a"), "--row", "panda-6"])
-    assert recipe == baseline.ROWS["panda-6"] and results is None
+    assert recipe == rows.ROWS["panda-6"] and results is None
     assert (recipe.layers, recipe.track, recipe.row) == (2, "keypose", "panda-6")
-    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--row", "so101-2",
-                                   "--steps", "7", "--results", str(tmp_path / "r")])  # fmt: skip
+    flags = ["--row", "so101-2", "--steps", "7", "--results", str(tmp_path / "r")]
+    _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), *flags])
     assert (recipe.robot, recipe.steps) == ("so101", 7)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--row", "nosuch"])
     err = capsys.readouterr().err
     assert stopped.value.code == 2 and "row: unknown 'nosuch'; accepted panda-2, panda-6" in err
-    rounds = len(baseline.ROWS["panda-2"].rounds)
+    rounds = len(rows.ROWS["panda-2"].rounds)
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "d"), "--rounds", str(rounds + 1)])
     assert stopped.value.code == 2 and "rounds: " in capsys.readouterr().err
@@ -182,7 +198,7 @@ def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
 def test_a_dagger_round_trains_on_from_the_last_rounds_policy(tmp_path, monkeypatch):
     _records(tmp_path, [True])
     commands = _trainings(monkeypatch)
-    baseline.train(tmp_path, baseline.Recipe(), 2, steps=123)
+    row_training.train(tmp_path, rows.Recipe(), 2, steps=123)
     command = commands[0]
     assert f"--policy.path={tmp_path / 'train_r1/checkpoints/last/pretrained_model'}" in command
     assert "--steps=123" in command and f"--output_dir={tmp_path / 'train_r2'}" in command
@@ -193,12 +209,19 @@ def test_a_dagger_round_trains_on_from_the_last_rounds_policy(tmp_path, monkeypa
 def test_the_result_file_holds_the_score_its_inputs_and_where_it_ran(tmp_path):
     _records(tmp_path, [True, False])
     _driven(tmp_path, 2, True, None)
-    evaluation = {"episodes": 10, "successes": 7, "success_rate": 0.7,
-                  "success_rate_95": [0.4, 0.9], "bricks_placed_mean": 1.7, "failures": {},
-                  "protocol": {"first_seed": 100000}, "bricks": 2,
-                  "versions": {"pyramid_sim": "x"}}  # fmt: skip
-    recipe = baseline.ROWS["panda-2"]
-    doc = baseline.result(recipe, evaluation, {"train": 5.0}, tmp_path / "demos", [])
+    evaluation = {
+        "episodes": 10,
+        "successes": 7,
+        "success_rate": 0.7,
+        "success_rate_95": [0.4, 0.9],
+        "bricks_placed_mean": 1.7,
+        "failures": {},
+        "protocol": {"first_seed": 100000},
+        "bricks": 2,
+        "versions": {"pyramid_sim": "x"},
+    }
+    recipe = rows.ROWS["panda-2"]
+    doc = row_result.result(recipe, evaluation, {"train": 5.0}, tmp_path / "demos", [])
     assert doc["score"]["successes"] == 7 and doc["score"]["success_rate_95"] == [0.4, 0.9]
     assert doc["demos"]["recorded"] == 2 and doc["demos"]["built"] == 1  # the expert's own
     assert doc["track"] == "keypose" and doc["task"]["bricks"] == 2
@@ -216,19 +239,27 @@ def test_the_checkpoint_carries_its_env_and_a_lerobot_eval_line_scores_it(tmp_pa
 
     _records(tmp_path, [True])
     commands = _trainings(monkeypatch)
-    recipe = baseline.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
-    baseline.train(tmp_path, recipe)
-    env = ["--env.type=pyramid_sim", "--env.robot=panda", "--env.task=pyramid-even",
-           "--env.layers=1", "--env.variation=layout", "--env.fps=10",
-           "--env.action_mode=anchored", '--env.cameras=["overview"]',
-           "--env.observation_height=96", "--env.observation_width=96",
-           "--env.episode_length=300"]  # fmt: skip
+    recipe = rows.Recipe(cameras=("overview",), image_size=(96, 96), max_steps=300)
+    row_training.train(tmp_path, recipe)
+    env = [
+        "--env.type=pyramid_sim",
+        "--env.robot=panda",
+        "--env.task=pyramid-even",
+        "--env.layers=1",
+        "--env.variation=layout",
+        "--env.fps=10",
+        "--env.action_mode=anchored",
+        '--env.cameras=["overview"]',
+        "--env.observation_height=96",
+        "--env.observation_width=96",
+        "--env.episode_length=300",
+    ]
     assert [a for a in commands[0] if a.startswith("--env")] == [*env, "--env_eval_freq=0"]
     checkpoint = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model"
-    line = shlex.split(baseline.lerobot_eval_line(checkpoint, tmp_path, recipe))
+    line = shlex.split(row_scoring.lerobot_eval_line(checkpoint, tmp_path, recipe))
     assert line[:3] == ["lerobot-eval", f"--policy.path={checkpoint}", "--policy.device=cpu"]
     assert line[3:14] == env and "--seed=100000" in line and "--eval.n_episodes=100" in line
-    assert [a for a in baseline.env_flags(baseline.Recipe()) if "length" in a] == []
+    assert [a for a in row_training.env_flags(rows.Recipe()) if "length" in a] == []
 
 
 def test_each_rounds_policy_is_scored_once_and_read_back_after(tmp_path, monkeypatch):
@@ -238,19 +269,24 @@ def test_each_rounds_policy_is_scored_once_and_read_back_after(tmp_path, monkeyp
 
     def fake_score(checkpoint, recipe, episodes, out):
         scored.append((checkpoint, episodes, out))
-        found = {"episodes": episodes, "successes": len(scored), "success_rate": 0.5,
-                 "success_rate_95": [0.3, 0.7], "bricks_placed_mean": 1.0}  # fmt: skip
+        found = {
+            "episodes": episodes,
+            "successes": len(scored),
+            "success_rate": 0.5,
+            "success_rate_95": [0.3, 0.7],
+            "bricks_placed_mean": 1.0,
+        }
         out.mkdir(parents=True)
         (out / "evaluation.json").write_text(json.dumps(found))
         return found
 
-    monkeypatch.setattr(baseline, "score", fake_score)
-    recipe = baseline.Recipe(rounds=(baseline.Round(5, 0.5, 10),), round_episodes=7)
-    first = baseline.round_scores(tmp_path, recipe)
+    monkeypatch.setattr(row_scoring, "score", fake_score)
+    recipe = rows.Recipe(rounds=(rows.Round(5, 0.5, 10),), round_episodes=7)
+    first = row_scoring.round_scores(tmp_path, recipe)
     assert [s["round"] for s in first] == [0, 1] and [s["successes"] for s in first] == [1, 2]
     assert scored[1][0] == tmp_path / "train_r1/checkpoints/last/pretrained_model"
     assert {s[1] for s in scored} == {7}
-    assert baseline.round_scores(tmp_path, recipe) == first and len(scored) == 2
+    assert row_scoring.round_scores(tmp_path, recipe) == first and len(scored) == 2
 
 
 def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_path, monkeypatch):
@@ -259,8 +295,8 @@ def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_pa
     horizon still fits; its actions, state and environment state scaled to their bounds."""
     _records(tmp_path, [True])
     commands = _trainings(monkeypatch)
-    recipe = baseline.ROWS["panda-2-diffusion"]
-    baseline.train(tmp_path, recipe)
+    recipe = rows.ROWS["panda-2-diffusion"]
+    row_training.train(tmp_path, recipe)
     flags = dict(a.split("=", 1) for a in commands[0] if a.startswith("--policy."))
     assert flags["--policy.type"] == "diffusion" and flags["--policy.horizon"] == "16"
     assert flags["--policy.noise_scheduler_type"] == "DDIM"
@@ -271,10 +307,10 @@ def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_pa
     assert json.loads(flags["--policy.normalization_mapping"])["ENV"] == "MIN_MAX"
     assert not [a for a in commands[0] if a.startswith("--policy.chunk_size")]  # ACT's
     monkeypatch.undo()  # the result file asks git for its commit
-    doc = baseline.result(recipe, _evaluation(), {}, tmp_path / "demos", [])
+    doc = row_result.result(recipe, _evaluation(), {}, tmp_path / "demos", [])
     assert doc["policy"] == "Diffusion Policy (lerobot-train)"
     assert (
-        baseline.result(baseline.Recipe(), _evaluation(), {}, tmp_path / "demos", [])["policy"]
+        row_result.result(rows.Recipe(), _evaluation(), {}, tmp_path / "demos", [])["policy"]
         == "ACT (lerobot-train)"
     )
 
@@ -282,10 +318,10 @@ def test_a_diffusion_row_trains_lerobots_diffusion_policy_sized_for_a_cpu(tmp_pa
 def test_a_quick_diffusion_row_keeps_a_horizon_its_u_net_can_halve(tmp_path):
     """--quick's tiny policy: two widths halve the horizon once, so it must be even, and the
     executed and observed steps must fit in it (a window of none would train on nothing)."""
-    small = baseline.quick(baseline.ROWS["panda-2-diffusion"])
+    small = rows.quick(rows.ROWS["panda-2-diffusion"])
     assert small.chunk % 2 ** (len(small.down_dims) - 1) == 0
     assert small.chunk - small.action_steps - small.obs_steps + 1 >= 0
-    assert baseline.quick(baseline.ROWS["panda-2"]).chunk == 10  # ACT's as before
+    assert rows.quick(rows.ROWS["panda-2"]).chunk == 10  # ACT's as before
 
 
 def _evaluation() -> dict:

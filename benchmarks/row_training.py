@@ -1,0 +1,136 @@
+"""A row's training: lerobot's own `lerobot-train` on the episodes kept, on one thread, its
+output in DIR/train.log (DIR/train_rK.log for DAgger's round K); and a finished training
+found again, so a stopped run goes on from there."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+from datetime import datetime
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # rows.py beside it
+
+from families import first_training  # noqa: E402
+from row_paths import checkpoint, cpu_file, train_log, training  # noqa: E402
+from row_recording import built  # noqa: E402
+from rows import Recipe  # noqa: E402
+from stage_progress import following, stage  # noqa: E402
+
+from pyramid_sim.errors import PyramidSimError  # noqa: E402
+
+
+def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) -> float:
+    """lerobot-train on one thread, on the episodes kept; round 0 from scratch, a DAgger
+    round on from the last round's policy. Its seconds; its log is DIR/train.log
+    (train_rK.log), followed for the bar of steps on a terminal."""
+    kept = built(out / "demos")
+    if not kept:
+        raise PyramidSimError("demos: no recorded episode built; accepted a recording with one")
+    steps = steps or recipe.steps
+    command = [
+        str(Path(sys.executable).parent / "lerobot-train"),
+        *_data_flags(out, kept),
+        *_policy_flags(out, recipe, round_),
+        f"--steps={steps}",
+        f"--batch_size={recipe.batch_size}",
+        f"--save_freq={recipe.save_every}",
+        "--num_workers=0",
+        "--wandb.enable=false",
+        "--seed=0",
+        f"--output_dir={training(out, round_)}",
+        # the env saved with the checkpoint, never run: no evaluation during training
+        *env_flags(recipe),
+        "--env_eval_freq=0",
+    ]
+    environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
+    start, cpu = time.perf_counter(), children_cpu()
+    desc = "training" if round_ == 0 else f"training round {round_}"
+    with stage(desc, steps, "step") as progress, open(train_log(out, round_), "w") as log:
+        progress.start()
+        with following(train_log(out, round_), progress):
+            done = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=environment)
+    if done.returncode != 0:
+        raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
+    # on one thread, its CPU time is what it took of one core, however loaded the machine
+    cpu_file(out, round_).write_text(f"{children_cpu() - cpu:.0f}\n")
+    return time.perf_counter() - start
+
+
+def _data_flags(out: Path, kept: list[int]) -> list[str]:
+    """The recording in DIR/demos, only its `kept` episodes."""
+    return [
+        f"--dataset.repo_id=local/{out.name}",
+        f"--dataset.root={out / 'demos'}",
+        f"--dataset.episodes=[{','.join(map(str, kept))}]",
+    ]
+
+
+def _policy_flags(out: Path, recipe: Recipe, round_: int) -> list[str]:
+    """The policy trained: the recipe's family from scratch in round 0; else the last
+    round's weights and settings (the normalization from the data now)."""
+    if round_ == 0:
+        policy = first_training(recipe)
+    else:
+        policy = [f"--policy.path={checkpoint(out, round_ - 1)}"]
+    return [
+        *policy,
+        "--policy.device=cpu",
+        "--policy.push_to_hub=false",
+        f"--policy.optimizer_lr={recipe.learning_rate}",
+    ]
+
+
+def env_flags(recipe: Recipe) -> list[str]:
+    """The plugin's env of the recipe's task, as lerobot-train saves it beside a checkpoint
+    (where `pyramid-sim evaluate` reads it) and as lerobot-eval takes it."""
+    r = recipe
+    height, width = r.image_size
+    flags = [
+        "--env.type=pyramid_sim",
+        f"--env.robot={r.robot}",
+        f"--env.task={r.structure}",
+        f"--env.layers={r.layers}",
+        f"--env.variation={r.variation}",
+        f"--env.fps={r.fps}",
+        f"--env.action_mode={r.action_mode}",
+        f"--env.cameras={json.dumps(list(r.cameras))}",
+        f"--env.observation_height={height}",
+        f"--env.observation_width={width}",
+    ]
+    if not r.brick_poses:
+        flags.append("--env.brick_poses=false")
+    if not r.all_goals:
+        flags.append("--env.all_goals=false")
+    if r.max_steps:
+        flags.append(f"--env.episode_length={r.max_steps}")
+    return flags
+
+
+def children_cpu() -> float:
+    """The CPU seconds this process's finished children took."""
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return used.ru_utime + used.ru_stime
+
+
+def trained_before(out: Path, round_: int = 0) -> float | None:
+    """The seconds a finished training of round `round_` in `out` took (from its log), or
+    None if there is none: a run that stopped after training goes on from there, as
+    `record` does."""
+    log, last = train_log(out, round_), checkpoint(out, round_)
+    if not (last / "model.safetensors").is_file() or not log.is_file():
+        return None
+    stamps = re.findall(
+        r"INFO (\d{4}-\d\d-\d\d \d\d:\d\d:\d\d) .*?(Start offline|End of)", log.read_text()
+    )
+    start = [t for t, what in stamps if what == "Start offline"]
+    end = [t for t, what in stamps if what == "End of"]
+    if not start or not end:
+        return None
+    seconds = datetime.fromisoformat(end[-1]) - datetime.fromisoformat(start[0])
+    return seconds.total_seconds()
