@@ -28,6 +28,8 @@ def dagger(out: Path, recipe: Recipe, seconds: dict[str, float]) -> list[dict[st
         before = total
         total += round_.episodes
         driver = {"policy": str(checkpoint(out, k - 1)), "beta": round_.beta}
+        if round_.takeover is not None:
+            driver["takeover"] = round_.takeover
         seconds[f"record_r{k}"] = record(out, recipe, total, f"recording round {k}", **driver)
         done = trained_before(out, k)
         seconds[f"train_r{k}"] = done if done is not None else train(out, recipe, k, round_.steps)
@@ -44,10 +46,12 @@ def round_summary(demos: Path, episodes: range, round_: Round) -> dict[str, Any]
     ]
     frames = sum(r["row"]["length"] for r in records)
     learner = sum(r["driver"]["learner_steps"] for r in records)
+    takeovers = sum(r["driver"].get("takeovers", 0) for r in records)
     kept = set(built(demos))
     return {
         **asdict(round_),
         "built": sum(r["success"] for r in records),
         "kept": sum(i in kept for i in episodes),
         "learner_share": learner / frames if frames else 0.0,
+        "takeovers": takeovers,
     }

@@ -36,7 +36,7 @@ def check_recipe(recipe: Any) -> None:
     from pyramid_sim.learning.recording.record_config import RecordConfig
     from pyramid_sim.learning.task.layout import check_cameras
     from pyramid_sim.options import resolve
-    from pyramid_sim.params import BETA
+    from pyramid_sim.params import BETA, TAKEOVER
     from pyramid_sim.physics.reach import prepare
 
     for layers in dict.fromkeys((recipe.layers, recipe.eval_layers or recipe.layers)):
@@ -74,6 +74,8 @@ def check_recipe(recipe: Any) -> None:
                 )
     for round_ in recipe.rounds:
         BETA.check(round_.beta)
+        if round_.takeover is not None:
+            TAKEOVER.check(round_.takeover)
 
 
 def check_run_folder(out: Path, names: Iterable[str], what: str) -> None:

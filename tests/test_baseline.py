@@ -145,7 +145,7 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     assert not (tmp_path / "c").exists()
 
 
-def _driven(root: Path, index: int, success: bool, failure: str | None, steps: int = 10):
+def _driven(root: Path, index: int, success: bool, failure: str | None, steps=10, takeovers=None):
     folder = root / "demos" / "meta" / "pyramid_sim"
     record = {
         "episode_index": index,
@@ -154,6 +154,8 @@ def _driven(root: Path, index: int, success: bool, failure: str | None, steps: i
         "row": {"length": 20},
         "driver": {"policy": "p", "beta": 0.5, "learner_steps": steps},
     }
+    if takeovers is not None:
+        record["driver"].update(takeover=0.02, takeovers=takeovers)
     (folder / f"episode_{index:06d}.json").write_text(json.dumps(record))
 
 
@@ -174,7 +176,12 @@ def test_daggers_episodes_are_learned_from_but_those_that_ran_out_of_steps(tmp_p
         "built": 1,
         "kept": 2,
         "learner_share": 0.5,
+        "takeover": None,
+        "takeovers": 0,
     }
+    gated = rows.Round(3, 0.5, 7, takeover=0.02)
+    _driven(tmp_path, 3, False, "x", takeovers=4)
+    assert row_dagger.round_summary(tmp_path / "demos", range(2, 5), gated)["takeovers"] == 4
 
 
 def test_a_rows_recipe_is_named_and_its_flags_change_it(tmp_path, capsys):
@@ -336,3 +343,21 @@ def _evaluation() -> dict:
         "bricks": 2,
         "versions": {},
     }
+
+
+def test_a_rounds_gate_reaches_the_recording_and_one_out_of_range_is_refused(
+    tmp_path, monkeypatch
+):
+    import pyramid_sim
+    from script_checks import check_recipe
+
+    calls: list[dict] = []
+    monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.append(kw))
+    monkeypatch.setattr(row_dagger, "trained_before", lambda out, k: 1.0)  # no training here
+    monkeypatch.setattr(row_dagger, "round_summary", lambda demos, episodes, round_: {})
+    recipe = rows.ROWS["panda-2-hg"]
+    row_dagger.dagger(tmp_path, recipe, {})
+    assert calls[0]["takeover"] == 0.02 and calls[0]["beta"] == 0.5 and "policy" in calls[0]
+    wide = rows.Recipe(rounds=(rows.Round(5, 0.5, 10, takeover=0.5),))
+    with pytest.raises(pyramid_sim.errors.ConfigError, match=r"takeover: 0.5 is out of range"):
+        check_recipe(wide)
