@@ -202,10 +202,12 @@ def test_a_gated_round_keeps_the_learners_steps_within_the_gate_and_builds(tmp_p
     expert's way is within 2 cm of them, past that the expert takes the rest of the span, and
     the episode builds; the record says how often the gate closed."""
     root = tmp_path / "gated"
-    recorded = _record(root, 1, policy="zero", beta=0.0, takeover=0.02)
-    assert recorded.failed == ()
-    driver, _ = _driver(root, 0)
-    frames = len(_frames(root, 0)["action"])
+    _record(root, 1)  # the expert's demonstration: a round adds to its dataset
+    recorded = _record(root, 2, policy="zero", beta=0.0, takeover=0.02)
+    assert recorded.failed == () and recorded.added == 1
+    driver, record = _driver(root, 1)
+    assert "takeover" not in record["config"]  # the round's driver, not the recording's
+    frames = len(_frames(root, 1)["action"])
     assert driver["takeover"] == 0.02 and driver["takeovers"] > 0
     assert 0 < driver["learner_steps"] < frames
     assert driver["takeovers"] <= frames / 20 + 1  # at most once a 2 s span of 20 frames

@@ -17,8 +17,8 @@ from .record_config import RecordConfig
 # What may differ between the runs that fill one dataset: none of it shapes an episode's files.
 # What drove an episode (DART's noise, a DAgger round's policy and its share) is among it: a
 # dataset grows by DAgger's rounds, and each episode's record says what drove it.
-RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", "beta")
-DRIVER = ("policy", "beta")  # kept in an episode's record only where a policy drove it
+RUN_ONLY = ("episodes", "workers", "backend", "ray_address", "noise", "policy", "beta", "takeover")
+DRIVER = ("policy", "beta", "takeover")  # kept in an episode's record only where a policy drove it
 # Settings added since the first recordings, as an episode recorded before them had them (and
 # as a record leaves out the one whose default it keeps: the bricks' poses observed).
 # What is observed (`Observed`) is among them, each at its default.
