@@ -106,7 +106,7 @@ def _train(
     """The demonstrations, the first training and DAgger's rounds, each found done or done
     now, and each round's policy scored: the seconds each took, the rounds and their gain."""
     seconds = {"record": record(out, recipe)}
-    before = trained_before(out)
+    before = trained_before(out, steps=recipe.steps)
     seconds["train"] = before if before is not None else train(out, recipe)
     rounds = dagger(out, recipe, seconds)
     start = time.perf_counter()

@@ -31,7 +31,7 @@ def dagger(out: Path, recipe: Recipe, seconds: dict[str, float]) -> list[dict[st
         if round_.takeover is not None:
             driver["takeover"] = round_.takeover
         seconds[f"record_r{k}"] = record(out, recipe, total, f"recording round {k}", **driver)
-        done = trained_before(out, k)
+        done = trained_before(out, k, round_.steps)
         seconds[f"train_r{k}"] = done if done is not None else train(out, recipe, k, round_.steps)
         added.append(round_summary(out / "demos", range(before, total), round_))
     return added

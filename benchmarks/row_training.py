@@ -22,7 +22,7 @@ from row_recording import built  # noqa: E402
 from rows import Recipe  # noqa: E402
 from stage_progress import following, stage  # noqa: E402
 
-from pyramid_sim.errors import PyramidSimError  # noqa: E402
+from pyramid_sim.errors import ConfigError, PyramidSimError  # noqa: E402
 
 
 def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) -> float:
@@ -33,7 +33,46 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
     if not kept:
         raise PyramidSimError("demos: no recorded episode built; accepted a recording with one")
     steps = steps or recipe.steps
-    command = [
+    saved = saved_step(out, round_)
+    resumed = saved is not None and saved < steps
+    if resumed:
+        command = _resume(out, recipe, round_, steps)
+    else:
+        command = _fresh(out, recipe, round_, steps, kept)
+    environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
+    start, cpu = time.perf_counter(), children_cpu()
+    spent = cpu_file(out, round_)
+    before = float(spent.read_text()) if resumed and spent.is_file() else 0.0
+    desc = "training" if round_ == 0 else f"training round {round_}"
+    log_file = train_log(out, round_)
+    with stage(desc, steps, "step") as progress, open(log_file, "a" if resumed else "w") as log:
+        progress.start(saved if resumed else 0)
+        with following(log_file, progress):
+            done = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=environment)
+    if done.returncode != 0:
+        raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
+    # on one thread, its CPU time is what it took of one core, however loaded the machine
+    cpu_file(out, round_).write_text(f"{before + children_cpu() - cpu:.0f}\n")
+    return time.perf_counter() - start
+
+
+def _resume(out: Path, recipe: Recipe, round_: int, steps: int) -> list[str]:
+    """lerobot-train going on from the round's last checkpoint to `steps`: its saved config
+    (the data, the policy, the seed), its optimizer's state and the data's order where it
+    stopped (lerobot resumes sample-exact), so the policy is the one a run of `steps` makes."""
+    return [
+        str(Path(sys.executable).parent / "lerobot-train"),
+        f"--config_path={checkpoint(out, round_) / 'train_config.json'}",
+        "--resume=true",
+        f"--steps={steps}",
+        f"--save_freq={recipe.save_every}",
+    ]
+
+
+def _fresh(out: Path, recipe: Recipe, round_: int, steps: int, kept: list[int]) -> list[str]:
+    """lerobot-train from the recipe on the `kept` episodes: round 0 from scratch, a DAgger
+    round from the last."""
+    return [
         str(Path(sys.executable).parent / "lerobot-train"),
         *_data_flags(out, kept),
         *_policy_flags(out, recipe, round_),
@@ -48,18 +87,6 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
         *env_flags(recipe),
         "--env_eval_freq=0",
     ]
-    environment = {**os.environ, "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
-    start, cpu = time.perf_counter(), children_cpu()
-    desc = "training" if round_ == 0 else f"training round {round_}"
-    with stage(desc, steps, "step") as progress, open(train_log(out, round_), "w") as log:
-        progress.start()
-        with following(train_log(out, round_), progress):
-            done = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=environment)
-    if done.returncode != 0:
-        raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
-    # on one thread, its CPU time is what it took of one core, however loaded the machine
-    cpu_file(out, round_).write_text(f"{children_cpu() - cpu:.0f}\n")
-    return time.perf_counter() - start
 
 
 def _data_flags(out: Path, kept: list[int]) -> list[str]:
@@ -118,19 +145,38 @@ def children_cpu() -> float:
     return used.ru_utime + used.ru_stime
 
 
-def trained_before(out: Path, round_: int = 0) -> float | None:
-    """The seconds a finished training of round `round_` in `out` took (from its log), or
-    None if there is none: a run that stopped after training goes on from there, as
-    `record` does."""
-    log, last = train_log(out, round_), checkpoint(out, round_)
-    if not (last / "model.safetensors").is_file() or not log.is_file():
+def saved_step(out: Path, round_: int = 0) -> int | None:
+    """The step of round `round_`'s last saved checkpoint (checkpoints/last links to its
+    NNNNNN folder), or None where there is none."""
+    last = checkpoint(out, round_)
+    if not (last / "model.safetensors").is_file():
         return None
+    return int(last.parent.resolve().name)
+
+
+def trained_before(out: Path, round_: int = 0, steps: int | None = None) -> float | None:
+    """The seconds a finished training of round `round_` in `out` took (from its log: each
+    of its sessions' start to end), or None if there is none, or it stopped short of `steps`
+    (`train` goes on from its last checkpoint): a stopped run goes on from there, as `record`
+    does. ConfigError for a training past `steps`, which the recipe did not ask for."""
+    log, saved = train_log(out, round_), saved_step(out, round_)
+    if saved is None or not log.is_file():
+        return None
+    if steps is not None and saved > steps:
+        raise ConfigError(
+            f"train: {out} holds a training of {saved} steps, more than the recipe's {steps}; "
+            "accepted a new folder, or the recipe's steps at least those"
+        )
     stamps = re.findall(
         r"INFO (\d{4}-\d\d-\d\d \d\d:\d\d:\d\d) .*?(Start offline|End of)", log.read_text()
     )
-    start = [t for t, what in stamps if what == "Start offline"]
-    end = [t for t, what in stamps if what == "End of"]
-    if not start or not end:
+    sessions, began = [], None
+    for stamp, what in stamps:
+        if what == "Start offline":
+            began = datetime.fromisoformat(stamp)
+        elif began is not None:
+            sessions.append((datetime.fromisoformat(stamp) - began).total_seconds())
+            began = None
+    if not sessions or began is not None or (steps is not None and saved < steps):
         return None
-    seconds = datetime.fromisoformat(end[-1]) - datetime.fromisoformat(start[0])
-    return seconds.total_seconds()
+    return sum(sessions)

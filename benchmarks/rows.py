@@ -133,8 +133,9 @@ ROWS: dict[str, Recipe] = {
         # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
         # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
         # 60 demonstrations (56 built, about 2800 frames each, 157k frames). 6000 steps of 32
-        # (1.2 passes over the frames) placed 4.60 of 20; 15000 steps are 3 passes, about 50
-        # minutes of one core, sized to train and score in one session beside two other rows
+        # (1.2 passes over the frames) placed 4.60 of 20, 15000 (3 passes, 48 min of one
+        # core) 12.2 and one whole pyramid; 25000 steps are 5 passes, the last 10000 resumed
+        # from the 15000-step checkpoint (lerobot resumes sample-exact)
         replace(
             SIX,
             row="panda-20",
@@ -143,7 +144,7 @@ ROWS: dict[str, Recipe] = {
             all_goals=False,
             demos=60,
             noise=0.002,
-            steps=15000,
+            steps=25000,
             save_every=5000,
             episodes=20,
         ),

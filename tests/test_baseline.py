@@ -2,7 +2,9 @@
 recording where none did before lerobot is started."""
 
 import json
+import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -345,15 +347,14 @@ def _evaluation() -> dict:
     }
 
 
-def test_a_rounds_gate_reaches_the_recording_and_one_out_of_range_is_refused(
-    tmp_path, monkeypatch
-):
-    import pyramid_sim
+def test_a_rounds_gate_reaches_the_recording_and_one_out_of_range_is_refused(tmp_path, monkeypatch):
     from script_checks import check_recipe
+
+    import pyramid_sim
 
     calls: list[dict] = []
     monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.append(kw))
-    monkeypatch.setattr(row_dagger, "trained_before", lambda out, k: 1.0)  # no training here
+    monkeypatch.setattr(row_dagger, "trained_before", lambda out, k, steps: 1.0)  # none here
     monkeypatch.setattr(row_dagger, "round_summary", lambda demos, episodes, round_: {})
     recipe = rows.ROWS["panda-2-hg"]
     row_dagger.dagger(tmp_path, recipe, {})
@@ -361,3 +362,58 @@ def test_a_rounds_gate_reaches_the_recording_and_one_out_of_range_is_refused(
     wide = rows.Recipe(rounds=(rows.Round(5, 0.5, 10, takeover=0.5),))
     with pytest.raises(pyramid_sim.errors.ConfigError, match=r"takeover: 0.5 is out of range"):
         check_recipe(wide)
+
+
+def _trained(out, step, sessions):
+    """A training folder as lerobot-train leaves it: checkpoints/NNNNNN, `last` linking to
+    it, and a log of `sessions` (start, end) stamps (end None: stopped)."""
+    folder = out / "train" / "checkpoints" / f"{step:06d}" / "pretrained_model"
+    folder.mkdir(parents=True)
+    (folder / "model.safetensors").write_text("x")
+    (folder / "train_config.json").write_text("{}")
+    (out / "train" / "checkpoints" / "last").symlink_to(f"{step:06d}")
+    lines = []
+    for start, end in sessions:
+        lines.append(f"INFO 2026-12-04 {start} ot_train.py:597 Start offline training")
+        if end:
+            lines.append(f"INFO 2026-12-04 {end} ot_train.py:770 End of training")
+    (out / "train.log").write_text("\n".join(lines) + "\n")
+    (out / "train_cpu_s.txt").write_text("100\n")
+
+
+def test_a_training_short_of_the_recipes_steps_goes_on_from_its_last_checkpoint(
+    tmp_path, monkeypatch
+):
+    """A row trained to 15000 steps whose recipe asks 25000 resumes from its checkpoint
+    (lerobot resumes sample-exact); its seconds are each session's; one past the recipe's
+    steps is refused."""
+    _records(tmp_path, [True, True])
+    _trained(tmp_path, 15000, [("10:00:00", "10:50:00"), ("11:00:00", None)])
+    assert row_training.saved_step(tmp_path) == 15000
+    assert row_training.trained_before(tmp_path, steps=25000) is None  # stopped short
+    assert row_training.trained_before(tmp_path, steps=15000) is None  # its last session ran on
+    (tmp_path / "train.log").write_text(
+        (tmp_path / "train.log").read_text() + "INFO 2026-12-04 11:10:00 ot_train.py:1 End of\n"
+    )
+    assert row_training.trained_before(tmp_path, steps=15000) == 50 * 60 + 10 * 60
+    with pytest.raises(PyramidSimError, match="training of 15000 steps, more than the recipe's"):
+        row_training.trained_before(tmp_path, steps=10000)
+    commands = []
+
+    def ran(command, stdout, **kw):
+        commands.append(command)
+        stdout.write("resumed\n")
+        return subprocess.CompletedProcess(command, 0)
+
+    monkeypatch.setattr(row_training.subprocess, "run", ran)
+    row_training.train(tmp_path, replace(rows.ROWS["panda-20"], steps=25000))
+    config = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model" / "train_config.json"
+    assert commands[0][1:] == [
+        f"--config_path={config}",
+        "--resume=true",
+        "--steps=25000",
+        "--save_freq=5000",
+    ]
+    log = (tmp_path / "train.log").read_text()
+    assert "Start offline" in log and log.endswith("resumed\n")  # the sessions before kept
+    assert float((tmp_path / "train_cpu_s.txt").read_text()) >= 100  # added to, not replaced
