@@ -163,3 +163,14 @@ def test_action_errors_bad_input_is_one_line(tmp_path, capsys, no_lerobot):
     checkpoint.mkdir()
     err = _refused(capsys, action_error.main, ["--policy", str(checkpoint)])
     assert "lerobot: not installed here" in err
+
+
+def test_a_scored_runs_folder_is_one_baseline_goes_on_with(tmp_path):
+    """What a row's own scoring writes (its evaluation, plot and replay tapes) does not make
+    its folder foreign: a stopped or finished run goes on."""
+    for name in ("demos", "train", "replay"):
+        (tmp_path / name).mkdir()
+    for name in ("train.log", "evaluation.json", "evaluation.png", "result.json"):
+        (tmp_path / name).write_text("x")
+    out, recipe, _ = baseline.parse(["--out", str(tmp_path), "--row", "panda-20"])
+    assert out == tmp_path and recipe.row == "panda-20"
