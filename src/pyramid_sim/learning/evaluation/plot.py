@@ -63,20 +63,25 @@ def title(scores: dict[str, Any]) -> str:
 
 def _bricks_per_episode(ax: Axes, rows: list[dict[str, Any]], bricks: int) -> None:
     """A bar an episode, as high as the bricks it placed, coloured from red (none) to green
-    (all); a success drawn edged in black."""
+    (all); a success drawn edged in black, an episode that placed none a red cross."""
     import matplotlib
+    from matplotlib.ticker import MaxNLocator
 
     cmap = matplotlib.colormaps["RdYlGn"]
     placed = [int(r["bricks_placed"]) for r in rows]
     colours = [cmap(p / bricks if bricks else 0.0) for p in placed]
     edges = ["black" if r["success"] else "none" for r in rows]
     ax.bar(range(len(rows)), placed, color=colours, edgecolor=edges, linewidth=0.6, width=0.85)
+    none = [i for i, p in enumerate(placed) if p == 0]  # a bar of height 0 draws nothing
+    ax.plot(none, [0] * len(none), "x", color=cmap(0.0), markersize=9, mew=2, clip_on=False)
     ax.axhline(bricks, color="#444444", linewidth=0.8, linestyle="--")
     ax.set_ylim(0, bricks * 1.08 + 0.1)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # episodes and bricks are whole
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_xlabel(f"episode (seed {rows[0]['seed']} + index)" if rows else "episode")
     ax.set_ylabel(f"bricks placed (of {bricks})")
-    ax.set_title("bricks placed per episode (edged: success)")
+    ax.set_title("bricks placed per episode (edged: success; x: none)")
 
 
 # the primitives in the order a brick passes them (the script's, then the scene's readings)
@@ -141,9 +146,9 @@ def _failures(fig: Any, axes: tuple[Axes, Axes], rows: list[dict[str, Any]], bri
     primitive its arm was in (the script's or the scene's reading, as the title says)."""
     grids = failure_grids(rows, bricks)
     reads = sorted({r["failed_at"]["read"] for r in rows if r.get("failed_at")})
-    read = f"; read from the {' and the '.join(reads)}" if reads else ""
+    read = f" (read from the {' and the '.join(reads)})" if reads else ""
     for ax, what in zip(axes, ("kind", "primitive")):
-        ax.set_title(f"failures by {what} and brick (episodes{read if what != 'kind' else ''})")
+        ax.set_title(f"failures by {what}{read if what == 'primitive' else ''} and brick")
         if not grids:
             ax.text(0.5, 0.5, f"no failure in {len(rows)} episodes", ha="center", va="center")
             ax.set_axis_off()
@@ -166,6 +171,8 @@ def _grid(fig: Any, ax: Axes, rows: list[str], cols: list[str], counts: list[lis
     for (i, j), n in np.ndenumerate(grid):
         if n:
             ax.text(j, i, f"{n:.0f}", ha="center", va="center", color="white", path_effects=stroke)
-    ax.set_xticks(range(len(cols)), cols)
+    every = 1 if len(cols) <= 12 else 2 if len(cols) <= 24 else 5  # labels that do not touch
+    shown = [c if k % every == 0 or not c.isdigit() else "" for k, c in enumerate(cols)]
+    ax.set_xticks(range(len(cols)), shown)
     ax.set_yticks(range(len(rows)), rows)
-    fig.colorbar(image, ax=ax, ticks=MaxNLocator(integer=True))
+    fig.colorbar(image, ax=ax, ticks=MaxNLocator(integer=True), label="episodes")
