@@ -89,6 +89,16 @@ def test_the_grids_count_failures_by_kind_and_by_primitive_against_the_brick():
     assert primitives == ["pick servo", "place hover", "place release"]  # a brick's order
     assert counts == [[0, 0, 2, 0, 0, 0], [1, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1, 0]]
     assert failure_grids(ROWS[:7], 6) == {}
+    waits = [
+        row(1, 0, "step limit: 9 steps", site(0, p))
+        for p in ("pick done, waiting", "clear", "pick waiting to enter", "place servo")
+    ]
+    assert failure_grids(waits, 6)["primitive"][0] == [
+        "pick waiting to enter",
+        "pick done, waiting",
+        "place servo",
+        "clear",
+    ]
 
 
 def test_a_file_from_before_failed_at_still_plots_its_failures(tmp_path):

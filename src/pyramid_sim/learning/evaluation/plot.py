@@ -126,7 +126,7 @@ def failure_grids(rows: list[dict[str, Any]], bricks: int) -> dict[str, Grid]:
         columns.append(None)
     labels = [str(b) if b is not None else "after" for b in columns]
     kinds = sorted({k for k, _, _ in sites})
-    prims = sorted({p for _, p, _ in sites}, key=lambda p: (p not in ORDER, _rank(p), p))
+    prims = sorted({p for _, p, _ in sites}, key=lambda p: (_rank(p), p))
     grids = {}
     for what, names, pick in (("kind", kinds, 0), ("primitive", prims, 1)):
         counts = [[0] * len(columns) for _ in names]
@@ -137,8 +137,15 @@ def failure_grids(rows: list[dict[str, Any]], bricks: int) -> dict[str, Grid]:
     return grids
 
 
-def _rank(primitive: str) -> int:
-    return ORDER.index(primitive) if primitive in ORDER else 0
+def _rank(primitive: str) -> float:
+    """Where a primitive comes in a brick's passage: waiting to enter before the action's
+    first move, done and waiting after its last; one not in `ORDER` after them all."""
+    action, bump = primitive.split(" ")[0], 0.0
+    if primitive.endswith(" waiting to enter"):
+        primitive, bump = f"{action} hover", -0.5
+    elif primitive.endswith(" done, waiting"):
+        primitive, bump = f"{action} retract", 0.5
+    return ORDER.index(primitive) + bump if primitive in ORDER else len(ORDER)
 
 
 def _failures(fig: Any, axes: tuple[Axes, Axes], rows: list[dict[str, Any]], bricks: int) -> None:
