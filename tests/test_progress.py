@@ -49,6 +49,34 @@ def test_a_resumed_sweep_rates_only_the_runs_it_ran():
     assert lines[-1] == "sweep: 10/10 builds (100%) in 1 min 20 s, 40.0 s/build"
 
 
+def test_off_a_terminal_each_line_says_the_time_left_at_this_runs_pace():
+    now = [0.0]
+    log = io.StringIO()
+    with Progress("episodes", 4, "episode", stream=log, clock=lambda: now[0]) as progress:
+        progress.start()
+        for _ in range(4):
+            now[0] += 30.0
+            progress.advance()
+    assert log.getvalue().splitlines() == [
+        "episodes: 1/4 episodes (25%) in 30 s, 30.0 s/episode, about 1 min 30 s left",
+        "episodes: 2/4 episodes (50%) in 1 min 0 s, 30.0 s/episode, about 1 min 0 s left",
+        "episodes: 3/4 episodes (75%) in 1 min 30 s, 30.0 s/episode, about 30 s left",
+        "episodes: 4/4 episodes (100%) in 2 min 0 s, 30.0 s/episode",
+    ]
+
+
+def test_on_a_terminal_the_bar_says_the_units_done_and_the_time_left():
+    now = [0.0]
+    screen = Terminal()
+    with Progress("episodes", 4, "episode", stream=screen, clock=lambda: now[0]) as progress:
+        progress.start()
+        progress.advance()
+        progress.advance()
+    bar = screen.getvalue().split("\r")[-1]
+    assert "2/4" in bar and re.search(r"\[\d\d:\d\d<\d\d:\d\d", bar), bar  # [elapsed<left
+    assert "\n" not in screen.getvalue().rstrip("\n")  # redrawn in place, not a line a step
+
+
 def test_on_a_terminal_a_resumed_sweep_starts_at_its_done_runs():
     screen = Terminal()
     with Progress("sweep", 10, "build", stream=screen) as progress:

@@ -40,6 +40,7 @@ def test_the_expert_scores_every_episode_and_the_json_says_how(tmp_path):
     )
     assert [row["seed"] for row in doc["rows"]] == list(range(100_000, 100_005))
     assert all(row["success"] and row["failure"] is None for row in doc["rows"])
+    assert all(row["failed_at"] is None for row in doc["rows"])  # no failure to place
     assert all(0.0 < row["command_lag"] < 1.0 for row in doc["rows"])  # its own pace, nearly
     assert doc["versions"]["pyramid_sim"] == pyramid_sim.__version__ and doc["versions"]["mujoco"]
     assert doc["settings"]["robot"] == "panda" and doc["inputs"]["episodes"] == 5

@@ -1,6 +1,7 @@
-"""Progress of a build or a sweep on stderr: tqdm bars on a terminal; elsewhere (a CI log, a
-file) a few plain lines, one at each tenth of the work, as a bar's redraws there become
-hundreds of lines.
+"""Progress of a long job (a build, a sweep, `record`'s and `evaluate`'s episodes) on stderr:
+tqdm bars on a terminal, with the units done and the time left; elsewhere (a CI log, a file) a
+few plain lines, one at each tenth of the work, each with the time left at this run's pace, as
+a bar's redraws there become hundreds of lines.
 
 Only what is known is shown: the film's frame count has no total until the build ends (its
 simulated end is not known before), so it is counted without one and given its total then,
@@ -10,12 +11,16 @@ starting count, not progress, so the rate counts only what this run did.
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from collections.abc import Callable
 from types import TracebackType
 from typing import Any, TextIO
 
+# A terminal that reports no size (a pseudo-terminal nobody sized: `script`, an editor's
+# shell, some CI runners) reads as 0 by 0, and tqdm then draws nothing at all: this size.
+FALLBACK_SIZE = (100, 20)  # columns, rows
 STEPS = 10  # plain lines for a whole run, at most (plus one for work done before, one at a stop)
 
 
@@ -57,9 +62,17 @@ class Progress:
         if self.tty:
             from tqdm import tqdm
 
+            sized = _sized(self.stream)  # else tqdm draws nothing
+            width, height = (None, None) if sized else FALLBACK_SIZE
             self._bars.append(
                 tqdm(
-                    total=self.total, initial=done, unit=self.unit, desc=self.desc, file=self.stream
+                    total=self.total,
+                    initial=done,
+                    unit=self.unit,
+                    desc=self.desc,
+                    file=self.stream,
+                    ncols=width,
+                    nrows=height,
                 )
             )
             if self.count_unit is not None:
@@ -70,6 +83,8 @@ class Progress:
                         desc=f"{self.count_unit}s",
                         position=1,
                         file=self.stream,
+                        ncols=width,
+                        nrows=height,
                     )
                 )
             return
@@ -134,12 +149,23 @@ class Progress:
         ]
         if done_now:
             parts.append(f"{elapsed / done_now:.1f} s/{self.unit}")
+            if self.n < self.total:  # at this run's pace so far, as a bar's estimate is
+                parts.append(f"about {duration(elapsed / done_now * (self.total - self.n))} left")
         if self.count_unit is not None:
             parts.append(f"{self.counted} {self.count_unit}s")
         return ", ".join(parts)
 
     def _line(self, text: str) -> None:
         print(f"{self.desc}: {text}", file=self.stream, flush=True)
+
+
+def _sized(stream: TextIO) -> bool:
+    """Whether the terminal reports its size (a stream that is no file: tqdm's own default)."""
+    try:
+        size = os.get_terminal_size(stream.fileno())
+    except (AttributeError, OSError, ValueError):
+        return True
+    return size.columns > 0 and size.lines > 0
 
 
 def duration(seconds: float) -> str:

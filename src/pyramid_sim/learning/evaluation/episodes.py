@@ -16,6 +16,7 @@ from ..env.env import BuildEnv
 from ..recording.episode import step_limit
 from ..recording.policy_calls import policy_call
 from .config import EvaluateConfig
+from .failure_site import failure_site
 
 
 def make_env(config: EvaluateConfig) -> Any:
@@ -68,6 +69,8 @@ def run_episode(
         "sim_time_s": info["sim_time_s"],
         "wall_time_s": time.perf_counter() - start,
     }
+    # read now, before the next reset: the brick and the primitive the failure happened on
+    row["failed_at"] = None if row["success"] else failure_site(env)
     if tape is not None:
         tape.save(episode_title(env, row))
     return row
