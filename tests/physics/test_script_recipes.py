@@ -37,3 +37,15 @@ def test_a_recipe_the_library_refuses_is_refused_before_anything_is_made(
 def test_every_rows_recipe_passes_the_checks():
     for recipe in baseline.ROWS.values():
         baseline.check_recipe(recipe)
+
+
+def test_a_rounds_gate_out_of_range_is_refused_with_the_recipe():
+    import rows
+    from script_checks import check_recipe
+
+    from pyramid_sim.errors import ConfigError
+
+    wide = rows.Recipe(rounds=(rows.Round(5, 0.5, 10, takeover=0.5),))
+    with pytest.raises(ConfigError, match=r"takeover: 0.5 is out of range; accepted \(0, 0.2\]"):
+        check_recipe(wide)
+    check_recipe(rows.ROWS["panda-2-hg"])  # the row's own gate is in range
