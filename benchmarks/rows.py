@@ -129,6 +129,9 @@ ROWS: dict[str, Recipe] = {
         # spans, its drift kept within 2 cm of the expert's way, the expert taking over past
         # it; scored on the same 100 seeds as panda-2 (81/100 before the round)
         Recipe(row="panda-2-hg", rounds=(Round(100, 0.5, 3000, takeover=0.02),)),
+        # its control: the same policy trained as many steps (4000 + 3000) on the expert's
+        # demonstrations alone, so the round's gain is its data's, not its steps'
+        Recipe(row="panda-2-long", steps=7000),
         # DE NIRO's own 20-brick pyramid, by a policy trained on it: the task's goals and the
         # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
         # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
