@@ -137,8 +137,8 @@ ROWS: dict[str, Recipe] = {
         # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
         # 60 demonstrations (56 built, about 2800 frames each, 157k frames). 6000 steps of 32
         # (1.2 passes over the frames) placed 4.60 of 20, 15000 (3 passes, 48 min of one
-        # core) 12.2 and one whole pyramid; 25000 steps are 5 passes, the last 10000 resumed
-        # from the 15000-step checkpoint (lerobot resumes sample-exact)
+        # core) 12.2 and one whole pyramid, 25000 (resumed from 15000) 8.15 and none
+        # (results/diagnostics/panda-20-25000-steps.json)
         replace(
             SIX,
             row="panda-20",
@@ -147,7 +147,7 @@ ROWS: dict[str, Recipe] = {
             all_goals=False,
             demos=60,
             noise=0.002,
-            steps=25000,
+            steps=15000,
             save_every=5000,
             episodes=20,
         ),
