@@ -43,6 +43,7 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
     start, cpu = time.perf_counter(), children_cpu()
     spent = cpu_file(out, round_)
     before = float(spent.read_text()) if resumed and spent.is_file() else 0.0
+    earlier = sum(_sessions(train_log(out, round_))) if resumed else 0.0
     desc = "training" if round_ == 0 else f"training round {round_}"
     log_file = train_log(out, round_)
     with stage(desc, steps, "step") as progress, open(log_file, "a" if resumed else "w") as log:
@@ -53,7 +54,7 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
         raise PyramidSimError(f"lerobot-train failed (exit {done.returncode}): see train.log")
     # on one thread, its CPU time is what it took of one core, however loaded the machine
     cpu_file(out, round_).write_text(f"{before + children_cpu() - cpu:.0f}\n")
-    return time.perf_counter() - start
+    return earlier + time.perf_counter() - start
 
 
 def _resume(out: Path, recipe: Recipe, round_: int, steps: int) -> list[str]:
@@ -167,16 +168,31 @@ def trained_before(out: Path, round_: int = 0, steps: int | None = None) -> floa
             f"train: {out} holds a training of {saved} steps, more than the recipe's {steps}; "
             "accepted a new folder, or the recipe's steps at least those"
         )
-    stamps = re.findall(
-        r"INFO (\d{4}-\d\d-\d\d \d\d:\d\d:\d\d) .*?(Start offline|End of)", log.read_text()
-    )
+    sessions = _sessions(log)
+    if not sessions or _running(log) or (steps is not None and saved < steps):
+        return None
+    return sum(sessions)
+
+
+def _stamps(log: Path) -> list[tuple[str, str]]:
+    """The log's (time, what) of each training session's start and end, in order."""
+    pattern = r"INFO (\d{4}-\d\d-\d\d \d\d:\d\d:\d\d) .*?(Start offline|End of)"
+    return re.findall(pattern, log.read_text()) if log.is_file() else []
+
+
+def _sessions(log: Path) -> list[float]:
+    """The seconds of each session the log shows ended: from its start to its end."""
     sessions, began = [], None
-    for stamp, what in stamps:
+    for stamp, what in _stamps(log):
         if what == "Start offline":
             began = datetime.fromisoformat(stamp)
         elif began is not None:
             sessions.append((datetime.fromisoformat(stamp) - began).total_seconds())
             began = None
-    if not sessions or began is not None or (steps is not None and saved < steps):
-        return None
-    return sum(sessions)
+    return sessions
+
+
+def _running(log: Path) -> bool:
+    """Whether the log's last session started and never ended (a training stopped midway)."""
+    stamps = _stamps(log)
+    return bool(stamps) and stamps[-1][1] == "Start offline"

@@ -402,7 +402,8 @@ def test_a_training_short_of_the_recipes_steps_goes_on_from_its_last_checkpoint(
         return subprocess.CompletedProcess(command, 0)
 
     monkeypatch.setattr(row_training.subprocess, "run", ran)
-    row_training.train(tmp_path, replace(rows.ROWS["panda-20"], steps=25000))
+    seconds = row_training.train(tmp_path, replace(rows.ROWS["panda-20"], steps=25000))
+    assert seconds >= 60 * 60  # the sessions before (50 + 10 min) and this one
     config = tmp_path / "train" / "checkpoints" / "last" / "pretrained_model" / "train_config.json"
     assert commands[0][1:] == [
         f"--config_path={config}",
