@@ -60,13 +60,18 @@ def train(out: Path, recipe: Recipe, round_: int = 0, steps: int | None = None) 
 def _resume(out: Path, recipe: Recipe, round_: int, steps: int) -> list[str]:
     """lerobot-train going on from the round's last checkpoint to `steps`: its saved config
     (the data, the policy, the seed), its optimizer's state and the data's order where it
-    stopped (lerobot resumes sample-exact), so the policy is the one a run of `steps` makes."""
+    stopped (lerobot resumes sample-exact), so the policy is the one a run of `steps` makes.
+    Its data and output are this run's folder's: a saved config names the folder it was
+    trained in, and a copied run resumed from it would write its checkpoints there."""
     return [
         str(Path(sys.executable).parent / "lerobot-train"),
         f"--config_path={checkpoint(out, round_) / 'train_config.json'}",
         "--resume=true",
         f"--steps={steps}",
         f"--save_freq={recipe.save_every}",
+        f"--output_dir={training(out, round_)}",
+        f"--dataset.root={out / 'demos'}",
+        f"--dataset.repo_id=local/{out.name}",
     ]
 
 

@@ -410,6 +410,9 @@ def test_a_training_short_of_the_recipes_steps_goes_on_from_its_last_checkpoint(
         "--resume=true",
         "--steps=25000",
         "--save_freq=5000",
+        f"--output_dir={tmp_path / 'train'}",  # this folder's, not the one the config names
+        f"--dataset.root={tmp_path / 'demos'}",
+        f"--dataset.repo_id=local/{tmp_path.name}",
     ]
     log = (tmp_path / "train.log").read_text()
     assert "Start offline" in log and log.endswith("resumed\n")  # the sessions before kept
