@@ -117,6 +117,25 @@ class Recipe:
 # the six-brick pyramid: DART's 5 mm over six bricks left a third of the demos built, 3 mm
 # four in five
 SIX = Recipe(row="panda-6", layers=2, demos=220, noise=0.003, steps=10000, save_every=2000)
+# DE NIRO's own 20-brick pyramid, by a policy trained on it: the task's goals and the
+# arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
+# (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
+# 60 demonstrations (56 built, about 2800 frames each, 157k frames). 6000 steps of 32
+# (1.2 passes over the frames) placed 4.60 of 20, 15000 (3 passes, 48 min of one
+# core) 12.2 and one whole pyramid, 25000 (resumed from 15000) 8.15 and none
+# (results/diagnostics/panda-20-25000-steps.json)
+ROW_20 = replace(
+    SIX,
+    row="panda-20",
+    layers=4,
+    brick_poses=False,
+    all_goals=False,
+    demos=60,
+    noise=0.002,
+    steps=15000,
+    save_every=5000,
+    episodes=20,
+)
 ROWS: dict[str, Recipe] = {
     r.row: r
     for r in (
@@ -132,25 +151,10 @@ ROWS: dict[str, Recipe] = {
         # its control: the same policy trained as many steps (4000 + 3000) on the expert's
         # demonstrations alone, so the round's gain is its data's, not its steps'
         Recipe(row="panda-2-long", steps=7000),
-        # DE NIRO's own 20-brick pyramid, by a policy trained on it: the task's goals and the
-        # arms alone (no brick's pose, each arm's next goal but no other); DART's offsets 2 mm
-        # (3 mm left one of two 20-brick demonstrations built, the other at the step limit);
-        # 60 demonstrations (56 built, about 2800 frames each, 157k frames). 6000 steps of 32
-        # (1.2 passes over the frames) placed 4.60 of 20, 15000 (3 passes, 48 min of one
-        # core) 12.2 and one whole pyramid, 25000 (resumed from 15000) 8.15 and none
-        # (results/diagnostics/panda-20-25000-steps.json)
-        replace(
-            SIX,
-            row="panda-20",
-            layers=4,
-            brick_poses=False,
-            all_goals=False,
-            demos=60,
-            noise=0.002,
-            steps=15000,
-            save_every=5000,
-            episodes=20,
-        ),
+        ROW_20,
+        # the 20-brick policy and a round of HG-DAgger: 20 episodes, the learner driving half
+        # the spans within 2 cm of the expert's way, then 3000 steps on
+        replace(ROW_20, row="panda-20-hg", rounds=(Round(20, 0.5, 3000, takeover=0.02),)),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
