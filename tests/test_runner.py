@@ -42,6 +42,15 @@ def _blas_threads() -> int:
     raise AssertionError(f"{library} tells no thread count")
 
 
+def _temp_then_sleepy(job: float) -> str:
+    """Make a temporary folder, as an episode's film does, and sleep in it."""
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="pyramid-sim-test-")
+    time.sleep(job)
+    return folder
+
+
 def _sleepy(job: int) -> int:
     time.sleep(job)
     return os.getpid()
@@ -99,6 +108,18 @@ def test_closing_the_run_stops_every_worker_at_once(tmp_path):
         os.kill(pid, 0)
     assert multiprocessing.active_children() == []  # the two still sleeping are gone too
     assert [m.exists() for m in marks] == [True, False, False]  # killed, not waited for
+
+
+def test_a_killed_workers_temporary_files_go_with_its_run():
+    """A worker killed mid-job runs no cleanup: its temporary folders sit in one of the run's
+    own, which the run removes, and none lands in the machine's temporary folder."""
+    ends = run_jobs(_temp_then_sleepy, [0.0, 60.0], workers=2)
+    first = next(ends).value
+    scratch = os.path.dirname(first)
+    assert os.path.basename(scratch).startswith("pyramid-sim-workers-")
+    assert os.path.isdir(scratch)  # the other worker still sleeps in it
+    ends.close()
+    assert not os.path.exists(scratch) and not os.path.exists(first)
 
 
 def test_a_ray_tasks_failure_reads_as_the_process_backends():

@@ -190,7 +190,9 @@ def _csv_rows(path: Path) -> list[dict]:
 def test_a_killed_sweep_resumes_to_exactly_one_row_per_run(tmp_path):
     out = tmp_path / "s"
     cmd = _sweep_cmd(out, "--brick-mass", "0.4,0.5,0.6,0.7", "--workers", "1")
-    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL)
+    # A killed run cleans nothing: its workers' temporary folder stays in this test's.
+    env = {**os.environ, "TMPDIR": str(tmp_path)}
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, env=env)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
         if (out / "sweep.csv").exists() and len(_csv_rows(out / "sweep.csv")) >= 1:

@@ -5,7 +5,8 @@ same handling: a job that raises, kills its worker or passes its timeout ends as
 naming why, and the others go on; workers run one BLAS thread, set before they import numpy;
 on worker processes a job's timeout counts from when its worker is ready (imports done), not
 from when it was queued (on Ray, from when it is submitted); and closing the run, or an
-interrupt, kills its workers at once.
+interrupt, kills its workers at once. A killed worker runs no cleanup, so worker processes
+keep their temporary files in a folder of the run's own, which the run removes as it ends.
 """
 
 from __future__ import annotations
@@ -13,8 +14,10 @@ from __future__ import annotations
 import multiprocessing as mp
 import multiprocessing.connection
 import os
+import shutil
 import signal
 import sys
+import tempfile
 import time
 from collections import deque
 from collections.abc import Callable, Generator, Iterable
@@ -100,11 +103,14 @@ def _worker_loop(
 class _Worker:
     """A spawned worker process: starting, ready (idle) or running one job."""
 
-    def __init__(self, ctx: Any, work: Callable[[Any], Any], warm: tuple[str, ...]) -> None:
+    def __init__(
+        self, ctx: Any, work: Callable[[Any], Any], warm: tuple[str, ...], scratch: str
+    ) -> None:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_loop, args=(child, work, warm), daemon=True)
-        saved = {k: os.environ.get(k) for k in ONE_BLAS_THREAD}
-        os.environ.update(ONE_BLAS_THREAD)
+        env = {**ONE_BLAS_THREAD, "TMPDIR": scratch}  # tempfile's folders go with the run
+        saved = {k: os.environ.get(k) for k in env}
+        os.environ.update(env)
         try:
             self.proc.start()
         finally:  # the parent keeps its own settings
@@ -181,10 +187,11 @@ def _run_processes(
     ctx = mp.get_context("spawn")  # no GL or MuJoCo state forked
     pending = deque(jobs)
     pool: list[_Worker] = []
+    scratch = tempfile.mkdtemp(prefix="pyramid-sim-workers-")
     try:
         while pending or any(w.busy for w in pool):
             while len(pool) < min(workers, len(pending) + sum(w.busy for w in pool)):
-                pool.append(_Worker(ctx, work, warm))
+                pool.append(_Worker(ctx, work, warm, scratch))
             for worker in pool:
                 if worker.ready and not worker.busy and pending:
                     job = pending.popleft()
@@ -206,6 +213,7 @@ def _run_processes(
     finally:
         for worker in pool:
             worker.stop()
+        shutil.rmtree(scratch, ignore_errors=True)  # what killed workers could not remove
 
 
 # --- Ray tasks ----------------------------------------------------------------------------------
