@@ -155,6 +155,9 @@ ROWS: dict[str, Recipe] = {
         # the 20-brick policy and a round of HG-DAgger: 20 episodes, the learner driving half
         # the spans within 2 cm of the expert's way, then 3000 steps on
         replace(ROW_20, row="panda-20-hg", rounds=(Round(20, 0.5, 3000, takeover=0.02),)),
+        # the same policy and a round four times the size: 80 episodes of HG-DAgger at the
+        # same gate (about 230k frames, beside the demonstrations' 176k), then 5000 steps on
+        replace(ROW_20, row="panda-20-hg2", rounds=(Round(80, 0.5, 5000, takeover=0.02),)),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
@@ -167,6 +170,13 @@ ROWS: dict[str, Recipe] = {
         # steps (1.7 passes over its 77k frames) its places are 1.5 cm off on the expert's own
         # states (docs/notes/2026-12-04-rows.md)
         Recipe(row="panda-2-absolute", action_mode="absolute"),
+        # its policy, then a round of HG-DAgger in the mode: the learner's own absolute targets
+        # kept within 2 cm of the expert's, the expert taking over past them
+        Recipe(
+            row="panda-2-absolute-hg",
+            action_mode="absolute",
+            rounds=(Round(100, 0.5, 3000, takeover=0.02),),
+        ),
         # the bricks seen through the overview camera alone (96 x 96), their poses unobserved:
         # a step costs about five times the state policy's, so half the steps
         Recipe(
