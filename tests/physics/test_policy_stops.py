@@ -96,4 +96,4 @@ def test_sigterm_while_act_runs_exits_143_without_blaming_the_policy(tmp_path):
     run.send_signal(signal.SIGTERM)
     _, err = run.communicate(timeout=60)
     assert run.returncode == 143, err
-    assert "policy" not in err and "Traceback" not in err
+    assert err.strip() == "pyramid-sim: terminated"  # the policy not blamed, no traceback

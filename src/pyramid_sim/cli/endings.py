@@ -39,6 +39,9 @@ def ended(prog: str, run: Callable[[], int]) -> int:
     except KeyboardInterrupt:  # Ctrl-C: partial files are already gone; no traceback
         print(f"{prog}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except Terminated as end:  # SIGTERM: said as Ctrl-C is, so a log tells why it stopped
+        print(f"{prog}: terminated", file=sys.stderr)
+        return int(end.code or 128 + signal.SIGTERM)
     except ctypes.ArgumentError as err:
         if not interrupted(err):
             raise
