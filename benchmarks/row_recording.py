@@ -24,18 +24,6 @@ def record(
     import pyramid_sim
 
     wanted = episodes or recipe.demos
-    task = {
-        "robot": recipe.robot,
-        "layers": recipe.layers,
-        "cameras": recipe.cameras,
-        "image_size": recipe.image_size,
-        "variation": recipe.variation,
-        "action_mode": recipe.action_mode,
-        "fps": recipe.fps,
-        "linger": recipe.linger,
-        "brick_poses": recipe.brick_poses,
-        "all_goals": recipe.all_goals,
-    }
     noise = 0.0 if driver else recipe.noise  # a learner's episodes: the expert labels, clean
     start = time.perf_counter()
     with stage(desc, wanted, "episode", count_unit="frame") as progress:
@@ -50,7 +38,7 @@ def record(
             progress.advance_to(episodes)
 
         pyramid_sim.record(
-            recipe.structure,
+            recipe.task,  # the spec whole: every field as the recipe has it
             out=out / "demos",
             episodes=wanted,
             seed=0,
@@ -58,7 +46,6 @@ def record(
             workers=recipe.workers,
             on_frame=on_frame,
             on_episode=on_episode,
-            **task,
             **driver,
         )
     return time.perf_counter() - start

@@ -93,12 +93,12 @@ def test_the_recipes_linger_reaches_the_recording_and_one_out_of_range_is_refuse
     import pyramid_sim
 
     calls: dict[str, dict] = {}
-    monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.update(record=kw))
+    monkeypatch.setattr(pyramid_sim, "record", lambda task, **kw: calls.update(record=task))
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.linger == 2.0  # the last release filmed
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "b"), "--linger", "0.5"])
     row_recording.record(tmp_path, recipe)
-    assert calls["record"]["linger"] == 0.5
+    assert calls["record"].linger == 0.5
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--linger", "11"])
     err = capsys.readouterr().err
@@ -111,8 +111,8 @@ def test_the_recipes_rate_reaches_the_recording_and_the_evaluation(tmp_path, mon
 
     calls: dict[str, dict] = {}
 
-    def recorded(name, **kwargs):
-        calls["record"] = kwargs
+    def recorded(task, **kwargs):
+        calls["record"] = {"fps": task.fps}
 
     def evaluated(policy, name, **kwargs):
         calls["evaluate"] = kwargs
@@ -132,14 +132,15 @@ def test_the_cameras_image_size_reaches_the_recording_and_one_out_of_range_is_re
     import pyramid_sim
 
     calls: dict[str, dict] = {}
-    monkeypatch.setattr(pyramid_sim, "record", lambda name, **kw: calls.update(record=kw))
+    monkeypatch.setattr(pyramid_sim, "record", lambda task, **kw: calls.update(record=task))
     _, recipe, _ = baseline.parse(["--out", str(tmp_path / "a")])
     assert recipe.image_size == (224, 224)  # record's default
     given = ["--out", str(tmp_path / "b"), "--cameras", "overview", "--image-size", "96"]
     _, recipe, _ = baseline.parse(given)
     row_recording.record(tmp_path, recipe)
-    assert calls["record"]["image_size"] == (96, 96)
-    assert calls["record"]["cameras"] == ("overview",)
+    assert calls["record"].image_size == (96, 96)
+    assert calls["record"].cameras == ("overview",)
+    assert calls["record"] == recipe.task  # the spec whole
     with pytest.raises(SystemExit) as stopped:
         baseline.parse(["--out", str(tmp_path / "c"), "--image-size", "15"])
     err = capsys.readouterr().err
