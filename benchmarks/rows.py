@@ -156,7 +156,7 @@ ROWS: dict[str, Recipe] = {
         # the spans within 2 cm of the expert's way, then 3000 steps on
         replace(ROW_20, row="panda-20-hg", rounds=(Round(20, 0.5, 3000, takeover=0.02),)),
         # the same policy and a round four times the size: 80 episodes of HG-DAgger at the
-        # same gate (about 230k frames, beside the demonstrations' 176k), then 5000 steps on
+        # same gate (211k frames, beside the demonstrations' 176k), then 5000 steps on
         replace(ROW_20, row="panda-20-hg2", rounds=(Round(80, 0.5, 5000, takeover=0.02),)),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
