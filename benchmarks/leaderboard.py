@@ -107,7 +107,8 @@ def _demos(row: dict[str, Any]) -> str:
     text = f"{demos['built']} of {demos['recorded']} built"
     rounds = (row.get("dagger") or {}).get("rounds") or []
     if rounds:
-        text += f" + {sum(r['episodes'] for r in rounds)} DAgger ({len(rounds)} rounds)"
+        many = f"{len(rounds)} round" + ("s" if len(rounds) > 1 else "")
+        text += f" + {sum(r['episodes'] for r in rounds)} DAgger ({many})"
     return text
 
 

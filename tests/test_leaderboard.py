@@ -52,7 +52,7 @@ def test_each_cell_is_its_files_figure_and_the_rows_are_ordered(tmp_path):
     assert [line.split("--row ")[1].split()[0] for line in lines[2:]] == ["c", "b", "a"]
     b = lines[3]
     assert "**40/100** (40-60 %), 4.50 bricks placed" in b
-    assert "150 of 200 built + 100 DAgger (1 rounds)" in b
+    assert "150 of 200 built + 100 DAgger (1 round)" in b
     assert "9000 steps, 60 min of one core (2-core CPU, no GPU)" in b
     assert "pyramid-even 2 (6 bricks, full)" in b and "| 0123456 |" in b
 
