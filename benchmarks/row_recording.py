@@ -27,16 +27,7 @@ def record(
     noise = 0.0 if driver else recipe.noise  # a learner's episodes: the expert labels, clean
     start = time.perf_counter()
     with stage(desc, wanted, "episode", count_unit="frame") as progress:
-        filmed: dict[int, int] = {}
-
-        def on_frame(episode: int, frames: int) -> None:
-            progress.count(frames - filmed.get(episode, 0))  # with workers, a whole episode
-            filmed[episode] = frames
-
-        def on_episode(episodes: int) -> None:
-            progress.start(episodes)  # the first call: those a resumed run found done
-            progress.advance_to(episodes)
-
+        on_frame, on_episode = progress.recording_hooks()
         pyramid_sim.record(
             recipe.task,  # the spec whole: every field as the recipe has it
             out=out / "demos",

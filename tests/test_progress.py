@@ -27,6 +27,23 @@ def test_off_a_terminal_a_whole_build_is_a_few_plain_lines():
     assert lines[-1].startswith("bricks: 20/20 bricks (100%) in ") and "1940 frames" in lines[-1]
 
 
+def test_a_recordings_hooks_count_episodes_and_each_frame_once():
+    """record's hooks: a resumed run starts at the episodes it found; an episode's frames as
+    they grow (one worker) or all at once (many) are counted once each."""
+    log = io.StringIO()
+    with Progress("episodes", 5, "episode", count_unit="frame", stream=log) as progress:
+        on_frame, on_episode = progress.recording_hooks()
+        on_episode(2)  # two found done: not this run's
+        on_frame(2, 10)
+        on_frame(2, 30)  # the same episode, grown
+        on_episode(3)
+        on_frame(3, 25)  # from a worker: whole
+        on_frame(4, 25)
+        on_episode(5)
+        assert (progress.initial, progress.n, progress.counted) == (2, 5, 80)
+    assert "80 frames" in log.getvalue().splitlines()[-1]
+
+
 def test_off_a_terminal_a_build_stopped_short_says_where():
     log = io.StringIO()
     with Progress("bricks", 20, "brick", stream=log) as progress:

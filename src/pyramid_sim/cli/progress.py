@@ -114,6 +114,21 @@ class Progress:
         if self.tty and len(self._bars) > 1:
             self._bars[1].update(by)
 
+    def recording_hooks(self) -> tuple[Callable[[int, int], None], Callable[[int], None]]:
+        """`record`'s `on_frame` and `on_episode` reported here: episodes on the bar, frames on
+        the second count (with workers, an episode's frames all at once as it ends)."""
+        filmed: dict[int, int] = {}
+
+        def on_frame(episode: int, frames: int) -> None:
+            self.count(frames - filmed.get(episode, 0))
+            filmed[episode] = frames
+
+        def on_episode(episodes: int) -> None:
+            self.start(episodes)  # the first call: those a resumed run found done
+            self.advance_to(episodes)
+
+        return on_frame, on_episode
+
     def close(self, stopped: bool = False) -> None:
         """End the report; the second count gets its total, now known. A run that ended
         short of its total says where it ended, unless it was `stopped` (an error is said

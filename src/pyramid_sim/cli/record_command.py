@@ -118,16 +118,7 @@ def cmd_record(args: argparse.Namespace) -> int:
     with Progress(
         "episodes", args.episodes, "episode", quiet=args.quiet, count_unit="frame"
     ) as progress:
-        filmed: dict[int, int] = {}
-
-        def on_frame(episode: int, frames: int) -> None:
-            progress.count(frames - filmed.get(episode, 0))  # with workers, a whole episode
-            filmed[episode] = frames
-
-        def on_episode(episodes: int) -> None:
-            progress.start(episodes)  # the first call: those a resumed run found done
-            progress.advance_to(episodes)
-
+        on_frame, on_episode = progress.recording_hooks()
         recorded = pyramid_sim.record(
             task,
             out=args.out,
