@@ -158,6 +158,12 @@ ROWS: dict[str, Recipe] = {
         # the same policy and a round four times the size: 80 episodes of HG-DAgger at the
         # same gate (211k frames, beside the demonstrations' 176k), then 5000 steps on
         replace(ROW_20, row="panda-20-hg2", rounds=(Round(80, 0.5, 5000, takeover=0.02),)),
+        # the 20-brick task with more than three times the demonstrations (200, the 2-brick
+        # row's count: 56 built of 60 was a third of the 2- and 6-brick rows' per placement),
+        # trained from scratch to a length sized to them: 20000 steps of 32 (about 1.2 passes
+        # over their frames, 70 min of one core); every policy trained on past 15000 steps of
+        # the 60 placed fewer
+        replace(ROW_20, row="panda-20-200", demos=200, steps=20000),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
         # lerobot's own arm at its scale: DART's offsets a quarter of the Panda's
