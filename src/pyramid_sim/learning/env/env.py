@@ -227,7 +227,7 @@ def observe(env: BuildEnv) -> dict[str, Any]:
         "pick": pick(env.plan),
         "goals": env.goals.copy(),
         "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
-        "next": next_of(env.plan, env.goals, env.placing.placed, tools),
+        "next": next_of(env.plan, env.goals, env.placing.occupied(loop), tools),
         "tools": tools,
         "held": loop.custody.holds(loop.data),
     }

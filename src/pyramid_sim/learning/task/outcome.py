@@ -65,6 +65,31 @@ class PlacementWatch:
                     break
         return newly - lost
 
+    def occupied(self, loop: BuildLoop) -> set[int]:
+        """The targets that hold a brick: those placed, and those a brick rests on outside the
+        tolerances, its centre within half a brick's width across the table and half its
+        height up or down. A brick set down 7 mm off is there all the same: told its target
+        was still free, a policy set its next brick onto that one, and a joint's torque ended
+        the episode (docs/notes/2026-12-05-occupied-targets.md). Only `placed` is scored."""
+        taken = set(self.placed)
+        d = loop.data
+        spawned = loop.spawner.next_slot
+        speeds = np.linalg.norm(d.qvel[self._lin_vel[:spawned]], axis=1)
+        resting = np.flatnonzero(speeds <= REST_SPEED)
+        if resting.size == 0:
+            return taken
+        centres = d.qpos[self._pose_q[resting][:, :3]]
+        brick = loop.config.brick
+        for target in loop.plan.bricks:
+            if target.index in taken:
+                continue
+            pose = target.target.pose
+            across = np.hypot(centres[:, 0] - pose.x, centres[:, 1] - pose.y)
+            level = np.abs(centres[:, 2] - pose.z) <= brick.height / 2
+            if np.any((across <= brick.width / 2) & level):
+                taken.add(target.index)
+        return taken
+
     def _lost(self, loop: BuildLoop) -> int:
         """Forget the targets whose brick has left the tolerances; how many. Only a brick
         whose pose changed since it was last found in place is judged again: this runs every

@@ -1,0 +1,60 @@
+"""A target a brick rests on holds it, placed within the tolerances or not: the observation's
+next target moves past it, while the score counts only bricks within the tolerances. Told the
+target was still free, the 20-brick policy set its next brick onto one set down 7 mm off."""
+
+import gymnasium
+import mujoco
+import numpy as np
+import pytest
+
+import pyramid_sim
+from pyramid_sim.learning.env.env import observe
+
+
+def _rest_brick_at(env, slot: int, goal: np.ndarray, off: tuple[float, float, float]) -> None:
+    """Magazine brick `slot` at rest at `goal` (x, y, z, yaw) moved by `off` (m)."""
+    q = env.loop.handles.brick_qpos[slot]
+    v = env.loop.handles.brick_dofs[slot]
+    data = env.loop.data
+    data.qpos[q : q + 3] = goal[:3] + np.asarray(off)
+    data.qpos[q + 3 : q + 7] = [np.cos(goal[3] / 2), 0.0, 0.0, np.sin(goal[3] / 2)]
+    data.qvel[v : v + 6] = 0.0
+    mujoco.mj_forward(env.loop.model, data)
+
+
+@pytest.mark.parametrize(
+    ("off", "taken"),
+    [
+        ((0.0, 0.007, 0.0), True),  # 7 mm across: outside the 5 mm tolerance, there all the same
+        ((0.03, -0.03, 0.0), True),  # 42 mm across: within half the 86 mm width
+        ((0.0, 0.05, 0.0), False),  # 50 mm across: past half the width, the target is free
+        ((0.0, 0.0, 0.04), False),  # 40 mm up: past half the 62 mm height
+    ],
+)
+def test_a_brick_resting_on_a_target_off_its_tolerances_moves_the_arms_next_target_on(off, taken):
+    env = gymnasium.make(
+        pyramid_sim.ENV_ID, structure="pyramid-even", layers=2, variation="layout"
+    ).unwrapped
+    obs, _ = env.reset(seed=4)
+    order = sorted(env.plan.arm_order("left"))
+    first, second = obs["goals"][order[0]], obs["goals"][order[1]]
+    np.testing.assert_array_equal(obs["next"][0], first)
+    _rest_brick_at(env, 0, first, off)
+    assert env.placing.update(env.loop) == 0 and not env.placing.placed  # not scored placed
+    seen = observe(env)
+    np.testing.assert_array_equal(seen["next"][0], second if taken else first)
+    assert seen["placed"].sum() == 0
+    assert (order[0] in env.placing.occupied(env.loop)) is taken
+    env.close()
+
+
+def test_a_brick_in_its_tolerances_is_placed_and_its_target_taken():
+    env = gymnasium.make(
+        pyramid_sim.ENV_ID, structure="pyramid-even", layers=2, variation="layout"
+    ).unwrapped
+    obs, _ = env.reset(seed=4)
+    order = sorted(env.plan.arm_order("left"))
+    _rest_brick_at(env, 0, obs["goals"][order[0]], (0.0, 0.002, 0.0))
+    assert env.placing.update(env.loop) == 1 and order[0] in env.placing.placed
+    np.testing.assert_array_equal(observe(env)["next"][0], obs["goals"][order[1]])
+    env.close()
