@@ -66,19 +66,15 @@ class PlacementWatch:
         return newly - lost
 
     def occupied(self, loop: BuildLoop) -> set[int]:
-        """The targets that hold a brick: those placed, and those a brick rests on outside the
+        """The targets that hold a brick: those placed, and those a brick sits on outside the
         tolerances, its centre within half a brick's width across the table and half its
         height up or down. A brick set down 7 mm off is there all the same: told its target
         was still free, a policy set its next brick onto that one, and a joint's torque ended
-        the episode (docs/notes/2026-12-05-occupied-targets.md). Only `placed` is scored."""
+        the episode (docs/notes/2026-12-05-occupied-targets.md). Where the brick is, not
+        whether it is at rest: a hand setting a brick down on it shakes it, and a target that
+        came free while it shook sent the hand down onto it. Only `placed` is scored."""
         taken = set(self.placed)
-        d = loop.data
-        spawned = loop.spawner.next_slot
-        speeds = np.linalg.norm(d.qvel[self._lin_vel[:spawned]], axis=1)
-        resting = np.flatnonzero(speeds <= REST_SPEED)
-        if resting.size == 0:
-            return taken
-        centres = d.qpos[self._pose_q[resting][:, :3]]
+        centres = loop.data.qpos[self._pose_q[: loop.spawner.next_slot, :3]]
         brick = loop.config.brick
         for target in loop.plan.bricks:
             if target.index in taken:
