@@ -9,6 +9,7 @@ import pytest
 
 import pyramid_sim
 from pyramid_sim.learning.env.env import observe
+from pyramid_sim.learning.task.spaces import next_of
 
 
 def _rest_brick_at(
@@ -76,4 +77,34 @@ def test_a_brick_shaken_on_its_target_still_holds_it():
     _rest_brick_at(env, 0, obs["goals"][order[0]], (0.0, 0.007, 0.0), speed=0.01)
     assert env.placing.update(env.loop) == 0
     np.testing.assert_array_equal(observe(env)["next"][0], obs["goals"][order[1]])
+    env.close()
+
+
+def test_in_the_experts_build_a_next_target_moves_on_as_its_brick_is_set_down():
+    """Where every brick is set down within the tolerances, an arm's next target is the one of
+    the placed bricks alone but while the brick it has just let go of on its last target
+    settles (placed once at rest, taken at once). A brick carried down onto a first-layer
+    target passes through the second layer's target stacked above it, and took it while it
+    passed: the next target jumped a layer."""
+    env = gymnasium.make(
+        pyramid_sim.ENV_ID, structure="pyramid-even", layers=2, variation="layout"
+    ).unwrapped
+    env.reset(seed=100_000)
+    orders = [sorted(env.plan.arm_order(arm)) for arm in ("left", "right")]
+    steps = carried = settling = 0
+    while True:
+        _, _, terminated, truncated, info = env.step(env.expert_action())
+        seen, steps = observe(env), steps + 1
+        placed_only = next_of(env.plan, env.goals, env.placing.placed, seen["tools"])
+        taken = env.placing.occupied(env.loop)
+        for row, order in enumerate(orders):
+            if not np.array_equal(seen["next"][row], placed_only[row]):
+                assert set(order) <= taken, (steps, row)  # its last target's brick let go
+                np.testing.assert_array_equal(seen["next"][row], env.goals[order[-1]])
+                settling += 1
+        carried += int(seen["held"].any())
+        if terminated or truncated:
+            break
+    assert info["is_success"], info["failure"]
+    assert carried > steps // 4 and settling < steps // 100, (carried, settling, steps)
     env.close()

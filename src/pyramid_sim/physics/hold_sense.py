@@ -38,6 +38,15 @@ class HoldSense:
             held.append(touched[0] & touched[1])
         return held
 
+    def touched(self, data: Any) -> set[int]:
+        """The bricks (magazine slots) any pad of either hand touches now: a brick in a hand,
+        however it is gripped."""
+        n = data.ncon
+        if n == 0:
+            return set()
+        pairs = np.stack([data.contact.geom1[:n], data.contact.geom2[:n]])
+        return set().union(*(self._bricks(pairs, pad) for pads in self.pads for pad in pads))
+
     def _bricks(self, pairs: np.ndarray, pad: int) -> set[int]:
         other = np.concatenate([pairs[1][pairs[0] == pad], pairs[0][pairs[1] == pad]])
         return {int(s) for s in self.slot[other] if s >= 0}

@@ -72,9 +72,13 @@ class PlacementWatch:
         was still free, a policy set its next brick onto that one, and a joint's torque ended
         the episode (docs/notes/2026-12-05-occupied-targets.md). Where the brick is, not
         whether it is at rest: a hand setting a brick down on it shakes it, and a target that
-        came free while it shook sent the hand down onto it. Only `placed` is scored."""
+        came free while it shook sent the hand down onto it. A brick a finger pad touches holds
+        none: carried down onto a target, it passes through those stacked above it. Only
+        `placed` is scored."""
         taken = set(self.placed)
-        centres = loop.data.qpos[self._pose_q[: loop.spawner.next_slot, :3]]
+        in_hand = loop.custody.holds.touched(loop.data)
+        free = [s for s in range(loop.spawner.next_slot) if s not in in_hand]
+        centres = loop.data.qpos[self._pose_q[free, :3]]
         brick = loop.config.brick
         for target in loop.plan.bricks:
             if target.index in taken:
