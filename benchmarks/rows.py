@@ -171,10 +171,6 @@ ROWS: dict[str, Recipe] = {
         # the continuous track: each hand's bounded pose change from where it is measured,
         # nothing copied from the observation into the action
         Recipe(row="panda-2-delta", action_mode="delta"),
-        # the continuous track in joint targets, as ALOHA and RoboTwin train: each joint's
-        # absolute target a step, with the keypose rows' recipe (the expert itself, offset
-        # 5 mrad a joint, built 12 of 20: docs/notes/2026-11-28-learning.md)
-        Recipe(row="panda-2-joint", action_mode="joint"),
         # the continuous track in absolute targets: each hand's pose in the world, bounded as
         # a delta is; a chunk of places does not carry its first error into its last. At 4000
         # steps (1.7 passes over its 77k frames) its places are 1.5 cm off on the expert's own
