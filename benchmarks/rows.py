@@ -161,8 +161,10 @@ ROWS: dict[str, Recipe] = {
         # the 20-brick task with more than three times the demonstrations (200, the 2-brick
         # row's count: 56 built of 60 was a third of the 2- and 6-brick rows' per placement),
         # trained from scratch to a length sized to them: 20000 steps of 32 (about 1.2 passes
-        # over their frames, 70 min of one core); every policy trained on past 15000 steps of
-        # the 60 placed fewer
+        # over their frames, 60 min of one core); every policy trained on past 15000 steps of
+        # the 60 placed fewer. 13.85 placed, 1/20 whole: 9 episodes end setting a top brick
+        # down a layer low, as its labels give the top approaches from the target below
+        # (docs/notes/2026-12-05-occupied-targets.md)
         replace(ROW_20, row="panda-20-200", demos=200, steps=20000),
         # every randomization drawn: friction, mass, grip force, brick size, looks
         Recipe(row="panda-2-full", variation="full"),
