@@ -5,6 +5,9 @@ it is imported here only, when a checkpoint folder is asked for."""
 
 from __future__ import annotations
 
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +31,21 @@ def one_thread() -> None:
         torch.set_num_threads(1)
 
 
+@contextmanager
+def own_temporary_files() -> Iterator[None]:
+    """Python's temporary files in a folder of ours, removed after: lerobot's
+    `PreTrainedConfig.from_pretrained` writes the config it parses to a temporary file it
+    never removes (`NamedTemporaryFile(delete=False)`, lerobot 0.6), so every policy loaded
+    left a tmp*.json in /tmp (two a row, from baseline.py's films)."""
+    before = tempfile.tempdir
+    with tempfile.TemporaryDirectory(prefix="pyramid-sim-lerobot-") as folder:
+        tempfile.tempdir = folder
+        try:
+            yield
+        finally:
+            tempfile.tempdir = before
+
+
 class LerobotPolicy:
     """The policy saved in `folder` (a checkpoint's pretrained_model: config.json and
     model.safetensors), for the BuildEnv `env`."""
@@ -47,9 +65,10 @@ class LerobotPolicy:
             raise lerobot_missing() from None
         check_checkpoint_files(folder)
         one_thread()
-        config = PreTrainedConfig.from_pretrained(str(folder))
-        config.device = "cpu"
-        self.policy = get_policy_class(config.type).from_pretrained(str(folder), config=config)
+        with own_temporary_files():
+            config = PreTrainedConfig.from_pretrained(str(folder))
+            config.device = "cpu"
+            self.policy = get_policy_class(config.type).from_pretrained(str(folder), config=config)
         self.policy.eval()
         self.pre, self.post = make_pre_post_processors(
             policy_cfg=self.policy.config,
