@@ -74,6 +74,20 @@ def test_an_anchored_action_turns_back_into_the_waypoint_it_was_made_from(seed):
         assert abs(np.remainder(back[yaw] - world[yaw] + np.pi, 2 * np.pi) - np.pi) < 1e-6
 
 
+def test_a_hand_carrying_a_brick_works_on_its_next_target_over_the_one_it_placed_last():
+    """The 20-brick pyramid's top bricks stand over the ones each arm placed just before:
+    carried down there within RADIUS of the target below, the hand was given that one, and
+    the policy set its brick a layer low (seed 100021)."""
+    orders = [[0, 2], [1]]
+    above = np.array([[*GOALS[0][:2], 0.3, 0.0], CLEARS[1]])
+    np.testing.assert_array_equal(next_targets(orders, GOALS, {0}, above)[0], GOALS[0])
+    carrying = next_targets(orders, GOALS, {0}, above, held=(1.0, 0.0))
+    np.testing.assert_array_equal(carrying[0], GOALS[2])
+    np.testing.assert_array_equal(carrying[1], GOALS[1])
+    let_go = next_targets(orders, GOALS, {0}, above, held=(0.0, 0.0))
+    np.testing.assert_array_equal(let_go[0], GOALS[0])  # its rise off the brick let go
+
+
 def test_an_anchor_near_an_integer_is_that_frame_and_between_two_slides_from_one_to_the_next():
     frames = _anchors()[0]
     for anchor, frame in ((0.1, 0), (0.9, 1), (1.0 + DEAD, 1), (1.9, 2), (7.0, 2), (-3.0, 0)):

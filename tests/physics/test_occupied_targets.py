@@ -95,7 +95,7 @@ def test_in_the_experts_build_a_next_target_moves_on_as_its_brick_is_set_down():
     while True:
         _, _, terminated, truncated, info = env.step(env.expert_action())
         seen, steps = observe(env), steps + 1
-        placed_only = next_of(env.plan, env.goals, env.placing.placed, seen["tools"])
+        placed_only = next_of(env.plan, env.goals, env.placing.placed, seen["tools"], seen["held"])
         taken = env.placing.occupied(env.loop)
         for row, order in enumerate(orders):
             if not np.array_equal(seen["next"][row], placed_only[row]):

@@ -221,15 +221,16 @@ def observe(env: BuildEnv) -> dict[str, Any]:
     """What a policy sees now: the entries of the environment's observation space."""
     loop = env.loop
     tools = lay.tools(loop.data, loop.handles)
+    held = loop.custody.holds(loop.data)
     observed: dict[str, Any] = {
         "state": env.measured_state(),
         "bricks": loop.data.qpos[env._brick_q],
         "pick": pick(env.plan),
         "goals": env.goals.copy(),
         "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
-        "next": next_of(env.plan, env.goals, env.placing.occupied(loop), tools),
+        "next": next_of(env.plan, env.goals, env.placing.occupied(loop), tools, held),
         "tools": tools,
-        "held": loop.custody.holds(loop.data),
+        "held": held,
     }
     for key in env.observed.hidden():
         del observed[key]

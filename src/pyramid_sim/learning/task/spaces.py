@@ -3,7 +3,7 @@ joint action spaces, the check of an action, and the headless renderer."""
 
 from __future__ import annotations
 
-from collections.abc import Collection
+from collections.abc import Collection, Sequence
 from typing import Any
 
 import numpy as np
@@ -71,11 +71,17 @@ def goals(plan: Any) -> np.ndarray:
 
 
 def next_of(
-    plan: Any, goals: np.ndarray, placed: Collection[int], tools: np.ndarray | None = None
+    plan: Any,
+    goals: np.ndarray,
+    placed: Collection[int],
+    tools: np.ndarray | None = None,
+    held: Sequence[float] | np.ndarray | None = None,
 ) -> np.ndarray:
     """Each arm's next target (`GOAL_FIELDS`), left first, with `placed` (build-order indices)
-    holding a brick and the hands at `tools`: `anchors.next_targets` of the plan's arms."""
-    return next_targets([sorted(plan.arm_order(arm)) for arm in ARMS], goals, placed, tools)
+    holding a brick, the hands at `tools` and holding `held`: `anchors.next_targets` of the
+    plan's arms."""
+    orders = [sorted(plan.arm_order(arm)) for arm in ARMS]
+    return next_targets(orders, goals, placed, tools, held)
 
 
 def joint_space(layout: lay.Layout) -> spaces.Box:
