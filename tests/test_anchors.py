@@ -81,10 +81,10 @@ def test_a_hand_carrying_a_brick_works_on_its_next_target_over_the_one_it_placed
     orders = [[0, 2], [1]]
     above = np.array([[*GOALS[0][:2], 0.3, 0.0], CLEARS[1]])
     np.testing.assert_array_equal(next_targets(orders, GOALS, {0}, above)[0], GOALS[0])
-    carrying = next_targets(orders, GOALS, {0}, above, held=(1.0, 0.0))
+    carrying = next_targets(orders, GOALS, {0}, above, carrying=(True, False))
     np.testing.assert_array_equal(carrying[0], GOALS[2])
     np.testing.assert_array_equal(carrying[1], GOALS[1])
-    let_go = next_targets(orders, GOALS, {0}, above, held=(0.0, 0.0))
+    let_go = next_targets(orders, GOALS, {0}, above, carrying=(False, False))
     np.testing.assert_array_equal(let_go[0], GOALS[0])  # its rise off the brick let go
 
 

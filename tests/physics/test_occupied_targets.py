@@ -80,31 +80,42 @@ def test_a_brick_shaken_on_its_target_still_holds_it():
     env.close()
 
 
-def test_in_the_experts_build_a_next_target_moves_on_as_its_brick_is_set_down():
-    """Where every brick is set down within the tolerances, an arm's next target is the one of
-    the placed bricks alone but while the brick it has just let go of on its last target
-    settles (placed once at rest, taken at once). A brick carried down onto a first-layer
-    target passes through the second layer's target stacked above it, and took it while it
-    passed: the next target jumped a layer."""
+def test_in_the_experts_build_next_differs_from_the_placed_bricks_alone_in_two_places():
+    """Where every brick is set down within the tolerances, an arm's next target is the
+    placed bricks' but (1) while the brick it let go of on its last target settles (placed
+    once at rest, taken at once) and (2) while its hand carries a brick down onto a target
+    stacked over the one it placed last (the placed bricks' rule gave it the target below).
+    Nowhere else: a brick carried down onto a first-layer target passes through the target
+    stacked above it, and took it while it passed; a hand letting go still holds its brick,
+    and was sent on to its next target mid-release."""
     env = gymnasium.make(
         pyramid_sim.ENV_ID, structure="pyramid-even", layers=2, variation="layout"
     ).unwrapped
     env.reset(seed=100_000)
     orders = [sorted(env.plan.arm_order(arm)) for arm in ("left", "right")]
-    steps = carried = settling = 0
+    steps, seen_cases = 0, {"settling": 0, "stacked": 0}
     while True:
         _, _, terminated, truncated, info = env.step(env.expert_action())
         seen, steps = observe(env), steps + 1
-        placed_only = next_of(env.plan, env.goals, env.placing.placed, seen["tools"], seen["held"])
+        placed_only = next_of(env.plan, env.goals, env.placing.placed, seen["tools"])
         taken = env.placing.occupied(env.loop)
+        holds = env.loop.custody.holds.slots(env.loop.data)
         for row, order in enumerate(orders):
-            if not np.array_equal(seen["next"][row], placed_only[row]):
-                assert set(order) <= taken, (steps, row)  # its last target's brick let go
+            if np.array_equal(seen["next"][row], placed_only[row]):
+                continue
+            if set(order) <= set(taken):  # its last target's brick let go
                 np.testing.assert_array_equal(seen["next"][row], env.goals[order[-1]])
-                settling += 1
-        carried += int(seen["held"].any())
+                seen_cases["settling"] += 1
+                continue
+            below = [i for i in order if i in env.placing.placed][-1]
+            above = next(i for i in order if i not in taken)
+            assert holds[row] - set(taken.values()), (steps, row)  # carrying a brick
+            np.testing.assert_array_equal(placed_only[row], env.goals[below])
+            np.testing.assert_array_equal(seen["next"][row], env.goals[above])
+            assert np.hypot(*(env.goals[above][:2] - env.goals[below][:2])) < 0.01
+            seen_cases["stacked"] += 1
         if terminated or truncated:
             break
     assert info["is_success"], info["failure"]
-    assert carried > steps // 4 and settling < steps // 100, (carried, settling, steps)
+    assert seen_cases["stacked"] > 0 and seen_cases["settling"] < steps // 100, seen_cases
     env.close()

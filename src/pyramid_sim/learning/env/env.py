@@ -221,16 +221,18 @@ def observe(env: BuildEnv) -> dict[str, Any]:
     """What a policy sees now: the entries of the environment's observation space."""
     loop = env.loop
     tools = lay.tools(loop.data, loop.handles)
-    held = loop.custody.holds(loop.data)
+    taken = env.placing.occupied(loop)
+    on_targets = set(taken.values())
+    carrying = [bool(held - on_targets) for held in loop.custody.holds.slots(loop.data)]
     observed: dict[str, Any] = {
         "state": env.measured_state(),
         "bricks": loop.data.qpos[env._brick_q],
         "pick": pick(env.plan),
         "goals": env.goals.copy(),
         "placed": np.isin(np.arange(len(env.goals)), list(env.placing.placed)).astype(float),
-        "next": next_of(env.plan, env.goals, env.placing.occupied(loop), tools, held),
+        "next": next_of(env.plan, env.goals, taken, tools, carrying),
         "tools": tools,
-        "held": held,
+        "held": loop.custody.holds(loop.data),
     }
     for key in env.observed.hidden():
         del observed[key]

@@ -36,7 +36,7 @@ def next_targets(
     goals: np.ndarray,
     placed: Collection[int],
     tools: np.ndarray | None = None,
-    held: Sequence[float] | np.ndarray | None = None,
+    carrying: Sequence[bool] | None = None,
 ) -> np.ndarray:
     """Each arm's next target (x, y, z, yaw), left first: the first of the arm's targets
     (`orders`: its build-order indices) that holds no brick yet, its last once all do, zeros
@@ -47,18 +47,18 @@ def next_targets(
     across the table of the target it placed last works on it yet: its release and the rise
     off the brick are given from that target, not from a clear pose tens of centimetres away
     (whose offset to the brick changes with the layout, and which a learner cannot regress to
-    the millimetres that keep its fingers off the brick it has just let go). With `held`
-    (each hand's hold, 1.0 or 0.0), a hand that holds a brick is on its way to its next
-    target, wherever it is: one stacked over the target the arm placed last lies within
-    `RADIUS` of it, and the hand carrying its brick down there was given the target below
+    the millimetres that keep its fingers off the brick it has just let go). A hand
+    `carrying` a brick (one that sits on no target) is on its way to its next target,
+    wherever it is: one stacked over the target the arm placed last lies within `RADIUS` of
+    it, and the hand carrying its brick down there was given the target below
     (docs/notes/2026-12-05-occupied-targets.md)."""
     rows = []
     for k, order in enumerate(orders):
         waiting = [i for i in order if i not in placed]
         done = [i for i in order if i in placed]
         row = goals[waiting[0] if waiting else order[-1]] if order else np.zeros(4)
-        carrying = held is not None and bool(held[k])
-        if tools is not None and waiting and done and not carrying:
+        on_its_way = carrying is not None and bool(carrying[k])
+        if tools is not None and waiting and done and not on_its_way:
             last = goals[done[-1]]
             if np.hypot(*(tools[k][:2] - last[:2])) < RADIUS:
                 row = last

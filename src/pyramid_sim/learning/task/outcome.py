@@ -65,7 +65,7 @@ class PlacementWatch:
                     break
         return newly - lost
 
-    def occupied(self, loop: BuildLoop) -> set[int]:
+    def occupied(self, loop: BuildLoop) -> dict[int, int]:
         """The targets that hold a brick: those placed, and those a brick sits on outside the
         tolerances, its centre within half a brick's width across the table and half its
         height up or down. A brick set down 7 mm off is there all the same: told its target
@@ -74,10 +74,10 @@ class PlacementWatch:
         whether it is at rest: a hand setting a brick down on it shakes it, and a target that
         came free while it shook sent the hand down onto it. A brick a finger pad touches holds
         none: carried down onto a target, it passes through those stacked above it. Only
-        `placed` is scored."""
-        taken = set(self.placed)
+        `placed` is scored. By build-order index, the magazine slot of the brick there."""
+        taken = dict(self.placed)
         in_hand = loop.custody.holds.touched(loop.data)
-        free = [s for s in range(loop.spawner.next_slot) if s not in in_hand]
+        free = np.array([s for s in range(loop.spawner.next_slot) if s not in in_hand], dtype=int)
         centres = loop.data.qpos[self._pose_q[free, :3]]
         brick = loop.config.brick
         for target in loop.plan.bricks:
@@ -86,8 +86,9 @@ class PlacementWatch:
             pose = target.target.pose
             across = np.hypot(centres[:, 0] - pose.x, centres[:, 1] - pose.y)
             level = np.abs(centres[:, 2] - pose.z) <= brick.height / 2
-            if np.any((across <= brick.width / 2) & level):
-                taken.add(target.index)
+            there = np.flatnonzero((across <= brick.width / 2) & level)
+            if there.size:
+                taken[target.index] = int(free[there[0]])
         return taken
 
     def _lost(self, loop: BuildLoop) -> int:

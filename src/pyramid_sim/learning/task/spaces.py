@@ -75,13 +75,13 @@ def next_of(
     goals: np.ndarray,
     placed: Collection[int],
     tools: np.ndarray | None = None,
-    held: Sequence[float] | np.ndarray | None = None,
+    carrying: Sequence[bool] | None = None,
 ) -> np.ndarray:
     """Each arm's next target (`GOAL_FIELDS`), left first, with `placed` (build-order indices)
-    holding a brick, the hands at `tools` and holding `held`: `anchors.next_targets` of the
-    plan's arms."""
+    holding a brick, the hands at `tools`, `carrying` a brick or not: `anchors.next_targets`
+    of the plan's arms."""
     orders = [sorted(plan.arm_order(arm)) for arm in ARMS]
-    return next_targets(orders, goals, placed, tools, held)
+    return next_targets(orders, goals, placed, tools, carrying)
 
 
 def joint_space(layout: lay.Layout) -> spaces.Box:
